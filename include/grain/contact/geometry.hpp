@@ -1,0 +1,116 @@
+#pragma once
+/// \file geometry.hpp
+/// Contact geometry and kinematics of a particle i and its partner j (a particle or a wall).
+///
+/// Conventions (SI units):
+/// - `normal` n is the unit vector from the centre of i towards the partner.
+/// - `overlap` delta = R_i + R_j - |x_j - x_i| for two particles, R_i - (distance of the centre
+///   to the wall surface) for a wall; the pair touches while delta > 0.
+/// - The contact point lies in the middle of the overlap: x_c = x_i + (R_i - delta/2) n.
+///   `arm_i` = x_c - x_i and `arm_j` = x_c - x_j (zero for walls, which receive no torque).
+/// - `velocity` is the velocity of i relative to j at the contact point, rotation included:
+///   (v_i + w_i x arm_i) - (v_j + w_j x arm_j) (wall: its surface velocity at x_c).
+///   `normal_velocity` = velocity . n is positive while the pair approaches.
+/// - A wall is a partner of infinite radius and mass: r_eff = R_i (flat), R_i R_w/(R_w -+ R_i)
+///   for the inside/outside of a circle; m_eff = m_i.
+/// - `contact_radius` is the geometric radius of the intersection of the two undeformed bodies
+///   (the half chord of the lens), a = sqrt(R_i^2 - ((R_i^2 - R_j^2 + d^2)/(2 d))^2), or
+///   sqrt(R_i^2 - d^2) for a flat wall. For small overlaps it is sqrt(2) times the Hertz radius
+///   sqrt(r_eff delta); models that need the Hertz radius compute it from r_eff and overlap.
+
+#include <grain/core/vector.hpp>
+#include <grain/walls/walls.hpp>
+#include <algorithm>
+#include <cmath>
+
+namespace grain {
+
+template <int D>
+struct ContactGeometry {
+  Vec<D> normal;
+  double overlap = 0.0;
+  double distance = 0.0; ///< centre distance (pair) or centre-to-surface distance (wall) [m]
+  Vec<D> point;          ///< contact point [m]
+  Vec<D> arm_i, arm_j;
+  Vec<D> velocity;                ///< relative velocity at the contact point [m/s]
+  double normal_velocity = 0.0;   ///< velocity . normal [m/s], > 0 approaching
+  Vec<D> tangential_velocity;     ///< velocity - normal_velocity * normal [m/s]
+  Angular<D> omega_rel;           ///< w_i - w_j [rad/s]
+  double radius_i = 0.0, radius_j = 0.0; ///< radius_j is infinite for a flat wall [m]
+  double r_eff = 0.0;    ///< effective radius R* [m]
+  double m_eff = 0.0;    ///< effective mass m* [kg]
+  double contact_radius = 0.0; ///< geometric contact radius [m]
+  bool wall = false;
+};
+
+namespace detail {
+
+/// Lens half-chord of two circles of radii r1, r2 at centre distance d.
+inline double lens_radius(double r1, double r2, double d) {
+  const double x = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+  return std::sqrt(std::abs(r1 * r1 - x * x));
+}
+
+} // namespace detail
+
+/// Geometry of two touching particles. `n` and `dist` come from the caller's distance test.
+template <int D>
+inline void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>& n, double dist,
+                          double ri, double rj,
+                          double mi, double mj, const Vec<D>& vi, const Vec<D>& vj,
+                          const Angular<D>& wi, const Angular<D>& wj) {
+  g.normal = n;
+  g.distance = dist;
+  g.overlap = ri + rj - dist;
+  const double ci = ri - 0.5 * g.overlap, cj = rj - 0.5 * g.overlap;
+  g.arm_i = ci * n;
+  g.arm_j = -cj * n;
+  g.point = xi + g.arm_i;
+  g.velocity = (vi + cross(wi, g.arm_i)) - (vj + cross(wj, g.arm_j));
+  g.normal_velocity = g.velocity.dot(n);
+  g.tangential_velocity = g.velocity - g.normal_velocity * n;
+  g.omega_rel = wi - wj;
+  g.radius_i = ri;
+  g.radius_j = rj;
+  g.r_eff = ri * rj / (ri + rj);
+  g.m_eff = mi * mj / (mi + mj);
+  g.contact_radius = detail::lens_radius(ri, rj, dist);
+  g.wall = false;
+}
+
+/// Geometry of a particle (centre x, radius r, mass m) touching a wall.
+template <int D>
+inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const WallProximity<D>& w,
+                          const Vec<D>& x, double r, double m, const Vec<D>& v,
+                          const Angular<D>& omega) {
+  g.normal = w.normal;
+  g.distance = w.distance;
+  g.overlap = r - w.distance;
+  g.arm_i = (r - 0.5 * g.overlap) * w.normal;
+  g.point = x + g.arm_i;
+  g.arm_j = Vec<D>::Zero();
+  g.velocity = (v + cross(omega, g.arm_i)) - wall.velocity_at(g.point);
+  g.normal_velocity = g.velocity.dot(w.normal);
+  g.tangential_velocity = g.velocity - g.normal_velocity * w.normal;
+  g.omega_rel = omega;
+  g.radius_i = r;
+  g.m_eff = m;
+  if (std::isinf(w.curvature_radius)) {
+    g.radius_j = w.curvature_radius;
+    g.r_eff = r;
+    const double d = std::max(w.distance, 0.0);
+    g.contact_radius = std::sqrt(std::max(r * r - d * d, 0.0));
+  } else {
+    // circle wall: convex (> 0, particle outside) or concave (< 0, particle inside)
+    const double rw = w.curvature_radius;
+    g.radius_j = rw;
+    g.r_eff = r * rw / (rw + r);
+    const double rc = std::abs(rw);
+    const double centre_distance = rw > 0 ? w.distance + rc : rc - w.distance;
+    g.contact_radius = centre_distance > 0 ? detail::lens_radius(r, rc, centre_distance) : r;
+  }
+  g.omega_rel = omega;
+  g.wall = true;
+}
+
+} // namespace grain

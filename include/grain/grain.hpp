@@ -1,0 +1,34 @@
+#pragma once
+/// \file grain.hpp
+/// The umbrella header: everything a grain program needs.
+///
+/// grain is a header-only C++20 library for thermo-mechanical discrete element simulations of 2D
+/// disks and 3D spheres. Models are types, coefficients are values:
+///
+/// \code
+/// using Contact = grain::Interaction<grain::normal::Hertz<>, grain::tangent::SpringDashpotSlider>;
+/// grain::Simulation<grain::Sphere, grain::search::CellList, Contact> sim;
+/// \endcode
+
+#include <grain/version.hpp>
+
+#include <grain/core/error.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/particles/material.hpp>
+#include <grain/particles/shape.hpp>
+#include <grain/particles/storage.hpp>
+#include <grain/walls/walls.hpp>
+#include <grain/contact/geometry.hpp>
+#include <grain/models/concepts.hpp>
+#include <grain/models/normal/hertz.hpp>
+#include <grain/models/normal/linear_spring_dashpot.hpp>
+#include <grain/models/tangent/none.hpp>
+#include <grain/models/tangent/spring_dashpot_slider.hpp>
+#include <grain/models/rolling/none.hpp>
+#include <grain/models/conduction/none.hpp>
+#include <grain/models/area/none.hpp>
+#include <grain/interaction.hpp>
+#include <grain/integrate/integrators.hpp>
+#include <grain/search/search.hpp>
+#include <grain/simulation.hpp>
+#include <grain/io/io.hpp>

@@ -1,0 +1,172 @@
+#pragma once
+/// \file interaction.hpp
+/// `Interaction<Normal, Tangent, Rolling, Conduction, AreaCorrection>`: the compile-time
+/// composition of contact models, and the per-contact pipeline.
+///
+/// Pipeline of one contact (the only place where the order lives):
+/// 1. area correction (contact radius seen by conduction models);
+/// 2. normal force  -> NormalResult {force, stiffness, damping};
+/// 3. tangential force, given the normal result (Coulomb limit, default stiffness and damping);
+/// 4. torques: the tangential force about each centre (arm x F), then the rolling model;
+/// 5. conduction (heat rate), given the corrected contact radius.
+///
+/// The per-contact history is composed of the non-empty histories of the models in use only; for
+/// models without history it costs zero bytes, and it is trivially copyable (a checkpoint or a
+/// re-sort of the contact list is a plain copy).
+
+#include <grain/models/area/none.hpp>
+#include <grain/models/concepts.hpp>
+#include <grain/models/conduction/none.hpp>
+#include <grain/models/rolling/none.hpp>
+#include <grain/models/tangent/none.hpp>
+#include <type_traits>
+
+namespace grain {
+
+namespace detail {
+
+/// Placeholder used after a failed concept check so that only the readable message is printed.
+template <Slot S>
+struct InvalidModel {
+  static constexpr Slot slot = S;
+  struct Params {};
+  template <int D>
+  struct History {};
+  static void validate(const Params&) {}
+  template <int D>
+  static NormalResult force(const ContactGeometry<D>&, const PairProperties&, const Params&,
+                            History<D>&) {
+    return {};
+  }
+  static double stiffness_estimate(const PairProperties&, const Params&, double, double, double) {
+    return 0;
+  }
+  template <int D>
+  static TangentResult<D> force(const ContactGeometry<D>&, const PairProperties&,
+                                const NormalResult&, const Params&, History<D>&, double) {
+    return {};
+  }
+  template <int D, class A>
+  static void torque(const ContactGeometry<D>&, const PairProperties&, const NormalResult&,
+                     const Params&, History<D>&, double, A&, A&) {}
+};
+
+/// A history slot tagged by its position so that two identical empty histories can share an
+/// address (and so take no space).
+template <class H, int I>
+struct Tagged : H {};
+
+} // namespace detail
+
+template <class Normal, class Tangent = tangent::None, class Rolling = rolling::None,
+          class Conduction = conduction::None, class AreaCorrection = area::None>
+struct Interaction {
+  static_assert(NormalModel<Normal>,
+                "grain::Interaction: the 1st argument must be a normal-force model, i.e. a type "
+                "from namespace grain::normal such as normal::Hertz<> or "
+                "normal::LinearSpringDashpot (see docs/concepts.md)");
+  static_assert(TangentModel<Tangent>,
+                "grain::Interaction: the 2nd argument must be a tangential-force model, i.e. a "
+                "type from namespace grain::tangent such as tangent::SpringDashpotSlider or "
+                "tangent::None (see docs/concepts.md)");
+  static_assert(RollingModel<Rolling>,
+                "grain::Interaction: the 3rd argument must be a contact-torque model, i.e. a type "
+                "from namespace grain::rolling such as rolling::None (see docs/concepts.md)");
+  static_assert(ConductionModel<Conduction>,
+                "grain::Interaction: the 4th argument must be a conduction model, i.e. a type "
+                "from namespace grain::conduction such as conduction::None (see docs/concepts.md)");
+  static_assert(AreaCorrectionModel<AreaCorrection>,
+                "grain::Interaction: the 5th argument must be a contact-area correction, i.e. a "
+                "type from namespace grain::area such as area::None (see docs/concepts.md)");
+
+  using normal_model = std::conditional_t<NormalModel<Normal>, Normal,
+                                          detail::InvalidModel<Slot::normal>>;
+  using tangent_model = std::conditional_t<TangentModel<Tangent>, Tangent,
+                                           detail::InvalidModel<Slot::tangent>>;
+  using rolling_model = std::conditional_t<RollingModel<Rolling>, Rolling,
+                                           detail::InvalidModel<Slot::rolling>>;
+  using conduction_model = std::conditional_t<ConductionModel<Conduction>, Conduction,
+                                              detail::InvalidModel<Slot::conduction>>;
+  using area_model = std::conditional_t<AreaCorrectionModel<AreaCorrection>, AreaCorrection,
+                                        detail::InvalidModel<Slot::area>>;
+
+  /// True if a model produces torques (then particles carry and integrate rotation).
+  static constexpr bool has_torque = !std::is_same_v<tangent_model, tangent::None> ||
+                                     !std::is_same_v<rolling_model, rolling::None>;
+
+  /// Coefficients of every model in use.
+  struct Params {
+    typename normal_model::Params normal{};
+    typename tangent_model::Params tangent{};
+    typename rolling_model::Params rolling{};
+    typename conduction_model::Params conduction{};
+    typename area_model::Params area{};
+  };
+
+  /// Per-contact history: the models' histories, empty ones taking no space.
+  template <int D>
+  struct History {
+    [[no_unique_address]] detail::Tagged<typename normal_model::template History<D>, 0> normal;
+    [[no_unique_address]] detail::Tagged<typename tangent_model::template History<D>, 1> tangent;
+    [[no_unique_address]] detail::Tagged<typename rolling_model::template History<D>, 2> rolling;
+    [[no_unique_address]] detail::Tagged<typename conduction_model::template History<D>, 3>
+        conduction;
+    [[no_unique_address]] detail::Tagged<typename area_model::template History<D>, 4> area;
+  };
+
+  /// True if no model keeps per-contact state (no history array is allocated).
+  template <int D>
+  static constexpr bool stateless = std::is_empty_v<History<D>>;
+
+  /// What one contact produces.
+  template <int D>
+  struct Result {
+    Vec<D> force = Vec<D>::Zero();   ///< total contact force on i (on j: minus this) [N]
+    Angular<D> torque_i = zero<Angular<D>>(); ///< contact torque on i [N m]
+    Angular<D> torque_j = zero<Angular<D>>(); ///< contact torque on j [N m]
+    NormalResult normal;
+    TangentResult<D> tangent;
+  };
+
+  static void validate(const Params& p) {
+    normal_model::validate(p.normal);
+    tangent_model::validate(p.tangent);
+    rolling_model::validate(p.rolling);
+    conduction_model::validate(p.conduction);
+    area_model::validate(p.area);
+  }
+
+  /// The per-contact pipeline (see the file comment for the order).
+  template <int D>
+  static Result<D> evaluate(const ContactGeometry<D>& g, const PairProperties& pair,
+                            const Params& p, History<D>& h, double dt) {
+    Result<D> r;
+    r.normal = normal_model::force(g, pair, p.normal, h.normal);
+    r.tangent = tangent_model::force(g, pair, r.normal, p.tangent, h.tangent, dt);
+    r.force = r.tangent.force - r.normal.force * g.normal;
+    if constexpr (has_torque) {
+      r.torque_i = cross(g.arm_i, r.tangent.force);
+      r.torque_j = cross(g.arm_j, Vec<D>(-r.tangent.force));
+      rolling_model::torque(g, pair, r.normal, p.rolling, h.rolling, dt, r.torque_i, r.torque_j);
+    }
+    return r;
+  }
+
+  /// Mirrors the history of a pair whose partners swap roles.
+  template <int D>
+  static void reverse(History<D>& h) {
+    reverse_history<normal_model, D>(h.normal);
+    reverse_history<tangent_model, D>(h.tangent);
+    reverse_history<rolling_model, D>(h.rolling);
+    reverse_history<conduction_model, D>(h.conduction);
+    reverse_history<area_model, D>(h.area);
+  }
+
+  /// Largest normal stiffness expected for a contact [N/m] (for the stable time step).
+  static double stiffness_estimate(const PairProperties& pair, const Params& p, double r_eff,
+                                   double m_eff, double v) {
+    return normal_model::stiffness_estimate(pair, p.normal, r_eff, m_eff, v);
+  }
+};
+
+} // namespace grain

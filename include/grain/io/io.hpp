@@ -1,0 +1,5 @@
+#pragma once
+/// \file io.hpp
+/// Input/output helpers. They read a simulation and are never included by the core.
+#include <grain/io/console.hpp>
+#include <grain/io/vtk.hpp>

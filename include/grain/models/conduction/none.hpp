@@ -1,0 +1,19 @@
+#pragma once
+/// \file none.hpp
+/// No heat conduction: a purely mechanical simulation (no thermal arrays are allocated).
+
+#include <grain/models/concepts.hpp>
+
+namespace grain::conduction {
+
+struct None {
+  static constexpr Slot slot = Slot::conduction;
+  static constexpr const char* name = "none";
+  static constexpr bool thermal = false;
+  struct Params {};
+  template <int D>
+  struct History {};
+  static void validate(const Params&) {}
+};
+
+} // namespace grain::conduction

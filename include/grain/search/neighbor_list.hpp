@@ -1,0 +1,30 @@
+#pragma once
+/// \file neighbor_list.hpp
+/// The candidate list every search produces: a half neighbour list in CSR form (row i holds the
+/// partners j > i, ascending) and a per-particle list of candidate walls.
+
+#include <cstdint>
+#include <vector>
+
+namespace grain {
+
+struct NeighborList {
+  std::vector<std::uint32_t> offsets{0};      ///< row i is partners[offsets[i], offsets[i+1])
+  std::vector<std::uint32_t> partners;        ///< j > i
+  std::vector<std::uint32_t> wall_offsets{0}; ///< row i is walls[wall_offsets[i], ...)
+  std::vector<std::uint32_t> walls;           ///< wall indices
+  std::uint32_t max_span = 0;                 ///< largest j - i in the list
+
+  std::size_t rows() const { return offsets.size() - 1; }
+  void clear(std::size_t n) {
+    offsets.assign(1, 0);
+    offsets.reserve(n + 1);
+    partners.clear();
+    wall_offsets.assign(1, 0);
+    wall_offsets.reserve(n + 1);
+    walls.clear();
+    max_span = 0;
+  }
+};
+
+} // namespace grain

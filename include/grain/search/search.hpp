@@ -1,0 +1,216 @@
+#pragma once
+/// \file search.hpp
+/// Neighbour searches: which pairs of particles, and which particle-wall pairs, are tested for
+/// contact. All three produce the same `NeighborList` and never detect a contact late: a list
+/// built with a skin s holds every pair closer than R_i + R_j + cutoff + s, and it is rebuilt
+/// before any particle has moved s/2 (or a particle plus a wall have together moved s).
+///
+/// | type | build | rebuilt |
+/// |---|---|---|
+/// | `AllPairs` | test all pairs, O(N^2) | every step, no skin (the seed's "simple loop") |
+/// | `VerletList` | test all pairs, O(N^2), keep those within the skin | every `frequency` steps, or earlier when the displacement demands it (the seed's "restricted loop") |
+/// | `CellList` | linked cells of size >= 2 R_max + cutoff + skin, particles re-sorted by cell, O(N) | when the displacement demands it |
+
+#include <grain/particles/storage.hpp>
+#include <grain/search/neighbor_list.hpp>
+#include <grain/walls/walls.hpp>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace grain::search {
+
+/// Every pair tested at every step (reference search; O(N^2)).
+struct AllPairs {
+  static constexpr const char* name = "all pairs";
+  struct Params {};
+  static void validate(const Params&) {}
+  static constexpr bool sorts = false;
+  static double skin(const Params&, double) { return 0.0; }
+  static bool due(const Params&, long, bool) { return true; }
+};
+
+/// Per-particle lists of partners within a skin (verlet distance), rebuilt at a set frequency
+/// or automatically.
+struct VerletList {
+  static constexpr const char* name = "Verlet list";
+  struct Params {
+    double skin = 0.0; ///< extra search distance [m]; 0 = 0.5 R_max
+    int frequency = 0; ///< rebuild every n steps; 0 = only when the displacement demands it
+  };
+  static void validate(const Params& p) {
+    detail::require_non_negative("search::VerletList", "skin", p.skin);
+    detail::require(p.frequency >= 0, "search::VerletList", "frequency", p.frequency,
+                    "[0, inf) steps (0 = automatic)");
+  }
+  static constexpr bool sorts = false;
+  static double skin(const Params& p, double r_max) { return p.skin > 0 ? p.skin : 0.5 * r_max; }
+  static bool due(const Params& p, long steps_since, bool moved_too_far) {
+    return moved_too_far || (p.frequency > 0 && steps_since >= p.frequency);
+  }
+};
+
+/// Linked cells with a skin; particles are re-sorted by cell at every rebuild.
+struct CellList {
+  static constexpr const char* name = "cell list";
+  struct Params {
+    double skin = 0.0; ///< extra search distance [m]; 0 = 0.2 R_max
+    bool sort = true;  ///< re-sort particles by cell at rebuilds (memory locality)
+  };
+  static void validate(const Params& p) {
+    detail::require_non_negative("search::CellList", "skin", p.skin);
+  }
+  static constexpr bool sorts = true;
+  static double skin(const Params& p, double r_max) { return p.skin > 0 ? p.skin : 0.2 * r_max; }
+  static bool due(const Params&, long, bool moved_too_far) { return moved_too_far; }
+};
+
+/// A neighbour search type.
+template <class S>
+concept Search = requires {
+  typename S::Params;
+  { S::sorts } -> std::convertible_to<bool>;
+};
+
+namespace detail {
+
+/// Uniform grid over the particle bounding box.
+template <int D>
+struct Grid {
+  Vec<D> lo;
+  double cell = 1.0;
+  std::array<long, 3> dims{1, 1, 1};
+
+  void setup(const std::vector<Vec<D>>& x, double min_cell) {
+    Vec<D> mn = Vec<D>::Constant(std::numeric_limits<double>::max());
+    Vec<D> mx = Vec<D>::Constant(-std::numeric_limits<double>::max());
+    for (const auto& p : x) {
+      mn = mn.cwiseMin(p);
+      mx = mx.cwiseMax(p);
+    }
+    if (x.empty()) mn = mx = Vec<D>::Zero();
+    lo = mn;
+    cell = min_cell;
+    // keep the number of cells within a few times the number of particles
+    const double max_cells = 8.0 * static_cast<double>(x.size()) + 64.0;
+    for (;;) {
+      double total = 1.0;
+      for (int d = 0; d < D; ++d) {
+        dims[d] = std::max<long>(1, static_cast<long>(std::floor((mx[d] - mn[d]) / cell)) + 1);
+        total *= static_cast<double>(dims[d]);
+      }
+      if (total <= max_cells) break;
+      cell *= 1.5;
+    }
+  }
+  long coord(const Vec<D>& p, int d) const {
+    return std::clamp<long>(static_cast<long>((p[d] - lo[d]) / cell), 0, dims[d] - 1);
+  }
+  long index(const Vec<D>& p) const {
+    long c = coord(p, D - 1);
+    for (int d = D - 2; d >= 0; --d) c = c * dims[d] + coord(p, d);
+    return c;
+  }
+  long count() const {
+    long n = 1;
+    for (int d = 0; d < D; ++d) n *= dims[d];
+    return n;
+  }
+};
+
+/// Adds the candidate walls of every particle to the list.
+template <int D>
+void build_wall_rows(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                     NeighborList& list, std::size_t i) {
+  for (std::uint32_t w = 0; w < walls.size(); ++w) {
+    const auto prox = walls[w].proximity(p.position[i]);
+    if (prox.distance < p.radius[i] + reach) list.walls.push_back(w);
+  }
+  list.wall_offsets.push_back(static_cast<std::uint32_t>(list.walls.size()));
+}
+
+/// O(N^2) build: partners j > i closer than r_i + r_j + reach.
+template <int D>
+void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                     NeighborList& list) {
+  const std::size_t n = p.size();
+  list.clear(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double rs = p.radius[i] + p.radius[j] + reach;
+      if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+        list.partners.push_back(static_cast<std::uint32_t>(j));
+        list.max_span = std::max<std::uint32_t>(list.max_span, static_cast<std::uint32_t>(j - i));
+      }
+    }
+    list.offsets.push_back(static_cast<std::uint32_t>(list.partners.size()));
+    build_wall_rows(p, walls, reach, list, i);
+  }
+}
+
+/// Permutation that sorts particles by cell (x fastest); stable within a cell.
+template <int D>
+std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size) {
+  Grid<D> grid;
+  grid.setup(p.position, cell_size);
+  const std::size_t n = p.size();
+  std::vector<long> key(n);
+  for (std::size_t i = 0; i < n; ++i) key[i] = grid.index(p.position[i]);
+  std::vector<std::uint32_t> perm(n);
+  std::iota(perm.begin(), perm.end(), 0u);
+  std::stable_sort(perm.begin(), perm.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  return perm;
+}
+
+/// Linked-cell build: partners j > i closer than r_i + r_j + reach, rows ascending.
+template <int D>
+void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                 double r_max, NeighborList& list) {
+  const std::size_t n = p.size();
+  list.clear(n);
+  Grid<D> grid;
+  grid.setup(p.position, 2.0 * r_max + reach);
+  const long nc = grid.count();
+  std::vector<std::uint32_t> head(static_cast<std::size_t>(nc) + 1, 0);
+  std::vector<long> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    key[i] = grid.index(p.position[i]);
+    ++head[static_cast<std::size_t>(key[i]) + 1];
+  }
+  for (long c = 0; c < nc; ++c) head[c + 1] += head[c];
+  std::vector<std::uint32_t> members(n);
+  {
+    std::vector<std::uint32_t> fill(head.begin(), head.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) members[fill[key[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  std::vector<std::uint32_t> row;
+  for (std::size_t i = 0; i < n; ++i) {
+    row.clear();
+    long c[3] = {0, 0, 0};
+    for (int d = 0; d < D; ++d) c[d] = grid.coord(p.position[i], d);
+    const long z0 = D == 3 ? std::max(c[2] - 1, 0L) : 0, z1 = D == 3 ? std::min(c[2] + 1, grid.dims[2] - 1) : 0;
+    for (long z = z0; z <= z1; ++z)
+      for (long y = std::max(c[1] - 1, 0L); y <= std::min(c[1] + 1, grid.dims[1] - 1); ++y)
+        for (long x = std::max(c[0] - 1, 0L); x <= std::min(c[0] + 1, grid.dims[0] - 1); ++x) {
+          const long cell = x + grid.dims[0] * (y + grid.dims[1] * z);
+          for (std::uint32_t k = head[cell]; k < head[cell + 1]; ++k) {
+            const std::uint32_t j = members[k];
+            if (j <= i) continue;
+            const double rs = p.radius[i] + p.radius[j] + reach;
+            if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) row.push_back(j);
+          }
+        }
+    std::sort(row.begin(), row.end());
+    for (auto j : row) {
+      list.partners.push_back(j);
+      list.max_span = std::max<std::uint32_t>(list.max_span, static_cast<std::uint32_t>(j - i));
+    }
+    list.offsets.push_back(static_cast<std::uint32_t>(list.partners.size()));
+    build_wall_rows(p, walls, reach, list, i);
+  }
+}
+
+} // namespace detail
+} // namespace grain::search

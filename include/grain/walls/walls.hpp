@@ -1,0 +1,251 @@
+#pragma once
+/// \file walls.hpp
+/// Rigid walls: segments and circles (2D), infinite planes and triangles (3D).
+///
+/// A wall is a contact partner of infinite mass (and infinite radius where it is flat). It may
+/// move with a prescribed translational velocity [m/s] and rotate with a prescribed angular
+/// velocity [rad/s] about its pivot (default: segment midpoint, circle centre, plane point,
+/// triangle centroid). A rotating circle does not change its geometry but drags particles with
+/// its surface velocity (a rotating drum). Wall velocities are constant in time here; time
+/// functions are added by the conditions layer.
+
+#include <grain/core/error.hpp>
+#include <grain/core/vector.hpp>
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <variant>
+
+namespace grain {
+namespace walls {
+
+/// 2D line segment from `a` to `b`; particles touch it from either side and at its ends.
+struct Segment {
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+};
+/// 2D circle of centre `center` and radius `radius` [m]; a particle inside touches it from the
+/// inside (a drum), a particle outside from the outside (a post).
+struct Circle {
+  Vec2 center = Vec2::Zero();
+  double radius = 0.0;
+};
+/// 3D infinite plane through `point` whose unit `normal` points to the side where particles are.
+struct Plane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+};
+/// 3D triangle with corners a, b, c; touched from either side, at edges and corners.
+struct Triangle {
+  Vec3 a = Vec3::Zero(), b = Vec3::UnitX(), c = Vec3::UnitY();
+};
+
+} // namespace walls
+
+/// Options shared by all walls.
+template <int D>
+struct WallOptions {
+  std::string name = "wall";
+  std::uint32_t material = 0;                ///< index returned by add_material
+  Vec<D> velocity = Vec<D>::Zero();           ///< translational velocity [m/s]
+  Angular<D> omega = zero<Angular<D>>();      ///< angular velocity about the pivot [rad/s]
+  bool has_pivot = false;                     ///< if true, rotate about `pivot`
+  Vec<D> pivot = Vec<D>::Zero();              ///< centre of rotation [m]
+};
+
+template <int D>
+using WallGeometry = std::conditional_t<D == 2, std::variant<walls::Segment, walls::Circle>,
+                                        std::variant<walls::Plane, walls::Triangle>>;
+
+/// Where a particle centre x meets a wall: unit normal from the particle towards the wall,
+/// distance from the centre to the wall surface, and the wall's radius of curvature at that point
+/// (positive convex towards the particle, negative concave, infinite flat).
+template <int D>
+struct WallProximity {
+  Vec<D> normal;
+  double distance;
+  double curvature_radius;
+};
+
+namespace detail {
+
+inline Vec2 closest_on_segment(const Vec2& a, const Vec2& b, const Vec2& x) {
+  const Vec2 ab = b - a;
+  const double t = std::clamp((x - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return a + t * ab;
+}
+
+/// Closest point of triangle abc to x (Ericson, Real-Time Collision Detection, 5.1.5).
+inline Vec3 closest_on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& p) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+} // namespace detail
+
+/// A wall: its geometry, motion and material.
+template <int D>
+struct Wall {
+  WallGeometry<D> geometry;
+  WallOptions<D> options;
+  Vec<D> pivot = Vec<D>::Zero();
+  WallGeometry<D> snapshot; ///< geometry at the last neighbour-list rebuild
+
+  static constexpr double inf = std::numeric_limits<double>::infinity();
+
+  /// Normal, distance and curvature seen from a particle centre x.
+  WallProximity<D> proximity(const Vec<D>& x) const {
+    return std::visit([&](const auto& g) { return proximity_of(g, x); }, geometry);
+  }
+
+  /// Velocity of the wall surface at point p [m/s].
+  Vec<D> velocity_at(const Vec<D>& p) const {
+    return options.velocity + cross(options.omega, Vec<D>(p - pivot));
+  }
+
+  bool moves() const {
+    return options.velocity.squaredNorm() > 0 || squared_norm(options.omega) > 0;
+  }
+
+  /// Advances the geometry by dt with the prescribed velocities.
+  void move(double dt) {
+    if (!moves()) return;
+    const Vec<D> shift = options.velocity * dt;
+    const auto w = options.omega;
+    auto tr = [&](const Vec<D>& p) -> Vec<D> {
+      return Vec<D>(pivot + rotated(Vec<D>(p - pivot), w, dt) + shift);
+    };
+    std::visit(
+        [&](auto& g) {
+          using G = std::decay_t<decltype(g)>;
+          if constexpr (std::is_same_v<G, walls::Segment>) {
+            g.a = tr(g.a);
+            g.b = tr(g.b);
+          } else if constexpr (std::is_same_v<G, walls::Circle>) {
+            g.center = tr(g.center);
+          } else if constexpr (std::is_same_v<G, walls::Plane>) {
+            g.point = tr(g.point);
+            g.normal = rotated(g.normal, w, dt).normalized();
+          } else {
+            g.a = tr(g.a);
+            g.b = tr(g.b);
+            g.c = tr(g.c);
+          }
+        },
+        geometry);
+    pivot += shift;
+  }
+
+  /// Upper bound of how far any point of the wall surface that lies within `reach` [m] of the
+  /// pivot has moved since the last snapshot.
+  double displacement_since_snapshot(double reach) const {
+    return std::visit(
+        [&](const auto& g) -> double {
+          using G = std::decay_t<decltype(g)>;
+          const auto& s = std::get<G>(snapshot);
+          if constexpr (std::is_same_v<G, walls::Segment>)
+            return std::max((g.a - s.a).norm(), (g.b - s.b).norm());
+          else if constexpr (std::is_same_v<G, walls::Circle>)
+            return (g.center - s.center).norm();
+          else if constexpr (std::is_same_v<G, walls::Plane>)
+            return (g.point - s.point).norm() + (g.normal - s.normal).norm() * reach;
+          else
+            return std::max({(g.a - s.a).norm(), (g.b - s.b).norm(), (g.c - s.c).norm()});
+        },
+        geometry);
+  }
+
+  void take_snapshot() { snapshot = geometry; }
+
+  /// Checks the geometry; throws InputError naming the wall.
+  void validate() const {
+    const std::string obj = "Wall '" + options.name + "'";
+    std::visit(
+        [&](const auto& g) {
+          using G = std::decay_t<decltype(g)>;
+          if constexpr (std::is_same_v<G, walls::Segment>) {
+            detail::require(all_finite(g.a) && all_finite(g.b), obj, "segment end points",
+                            "(non-finite)", "finite coordinates");
+            detail::require_positive(obj, "segment length", (g.b - g.a).norm());
+          } else if constexpr (std::is_same_v<G, walls::Circle>) {
+            detail::require(all_finite(g.center), obj, "circle centre", "(non-finite)",
+                            "finite coordinates");
+            detail::require_positive(obj, "circle radius", g.radius);
+          } else if constexpr (std::is_same_v<G, walls::Plane>) {
+            detail::require(all_finite(g.point), obj, "plane point", "(non-finite)",
+                            "finite coordinates");
+            detail::require(all_finite(g.normal) && std::abs(g.normal.norm() - 1.0) < 1e-9, obj,
+                            "plane normal length", g.normal.norm(), "1 (a unit vector)");
+          } else {
+            detail::require(all_finite(g.a) && all_finite(g.b) && all_finite(g.c), obj,
+                            "triangle corners", "(non-finite)", "finite coordinates");
+            detail::require_positive(obj, "triangle area", 0.5 * (g.b - g.a).cross(g.c - g.a).norm());
+          }
+        },
+        geometry);
+    detail::require(all_finite(options.velocity), obj, "velocity", "(non-finite)", "finite");
+    detail::require(all_finite(options.omega), obj, "omega", "(non-finite)", "finite");
+  }
+
+  /// Default pivot of a geometry.
+  static Vec<D> default_pivot(const WallGeometry<D>& geometry) {
+    return std::visit(
+        [](const auto& g) -> Vec<D> {
+          using G = std::decay_t<decltype(g)>;
+          if constexpr (std::is_same_v<G, walls::Segment>)
+            return 0.5 * (g.a + g.b);
+          else if constexpr (std::is_same_v<G, walls::Circle>)
+            return g.center;
+          else if constexpr (std::is_same_v<G, walls::Plane>)
+            return g.point;
+          else
+            return (g.a + g.b + g.c) / 3.0;
+        },
+        geometry);
+  }
+
+private:
+  static WallProximity<2> proximity_of(const walls::Segment& s, const Vec2& x) {
+    const Vec2 q = detail::closest_on_segment(s.a, s.b, x);
+    Vec2 d = q - x;
+    double dist = d.norm();
+    if (dist > 0) return {d / dist, dist, inf};
+    const Vec2 t = (s.b - s.a).normalized();
+    return {Vec2(-t.y(), t.x()), 0.0, inf};
+  }
+  static WallProximity<2> proximity_of(const walls::Circle& c, const Vec2& x) {
+    const Vec2 d = x - c.center;
+    const double r = d.norm();
+    const Vec2 u = r > 0 ? Vec2(d / r) : Vec2(Vec2::UnitX());
+    if (r <= c.radius) return {u, c.radius - r, -c.radius}; // inside: concave wall
+    return {-u, r - c.radius, c.radius};                     // outside: convex wall
+  }
+  static WallProximity<3> proximity_of(const walls::Plane& p, const Vec3& x) {
+    return {-p.normal, (x - p.point).dot(p.normal), inf};
+  }
+  static WallProximity<3> proximity_of(const walls::Triangle& t, const Vec3& x) {
+    const Vec3 q = detail::closest_on_triangle(t.a, t.b, t.c, x);
+    const Vec3 d = q - x;
+    const double dist = d.norm();
+    if (dist > 0) return {d / dist, dist, inf};
+    return {(t.b - t.a).cross(t.c - t.a).normalized(), 0.0, inf};
+  }
+};
+
+} // namespace grain
