@@ -98,6 +98,8 @@ public:
   using History = typename Contact::template History<D>;
   using V = Vec<D>;
   using A = Angular<D>;
+  /// Loops over fewer particles than this run on one thread (a parallel region costs more).
+  static constexpr long parallel_threshold = 1000;
 
   explicit Simulation(Params params = {}, Shape shape = {}) : params_(std::move(params)), shape_(shape) {
     shape_.validate();
@@ -490,7 +492,7 @@ private:
       double d2 = 0.0;
       const auto& x = particles_.position;
       const long n = static_cast<long>(x.size());
-#pragma omp parallel for reduction(max : d2) schedule(static)
+#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
       for (long i = 0; i < n; ++i) d2 = std::max(d2, (x[i] - snapshot_[i]).squaredNorm());
       const double dp = std::sqrt(d2);
       double dw = 0.0;
@@ -525,7 +527,7 @@ private:
           return perm.empty() ? static_cast<std::uint32_t>(k) : perm[k];
         };
         const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
         for (long i = 0; i < nl; ++i) {
           const std::uint32_t a = old_of(static_cast<std::size_t>(i));
           for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
@@ -565,7 +567,7 @@ private:
   void compute_forces() {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       p.force[i] = V::Zero();
       p.torque[i] = zero<A>();
@@ -575,7 +577,7 @@ private:
     const long chunk = std::max({span, (n + 63) / 64, 1L});
     const long nchunks = (n + chunk - 1) / chunk;
     for (int phase = 0; phase < 2; ++phase) {
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= parallel_threshold)
       for (long c = phase; c < nchunks; c += 2) {
         const long end = std::min(n, (c + 1) * chunk);
         for (long i = c * chunk; i < end; ++i) contact_row(static_cast<std::size_t>(i));
@@ -583,7 +585,7 @@ private:
     }
     const V g = params_.gravity;
     const double ct = params_.damping_translational, cr = params_.damping_rotational;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       p.force[i] += p.mass[i] * g - ct * p.velocity[i];
       if constexpr (Contact::has_torque) p.torque[i] -= cr * p.omega[i];
@@ -635,7 +637,7 @@ private:
   void integrate_before(double dt) {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::before(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
@@ -650,7 +652,7 @@ private:
   void integrate_after(double dt) {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::after(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });

@@ -1,0 +1,146 @@
+// The solution loop: free flight, determinism across thread counts, walls that move.
+#include <grain/grain.hpp>
+#include <doctest/doctest.h>
+#include <cstring>
+#include <random>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+using namespace grain;
+
+namespace {
+using Contact3 = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider>;
+using Contact2 = Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider>;
+const Material soft{.density = 2500, .young = 1e7, .poisson = 0.3, .restitution = 0.5, .friction = 0.5};
+
+template <class Sim>
+void settle_box(Sim& sim, int n, unsigned seed) {
+  constexpr int D = Sim::dimension;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto m = sim.add_material(soft);
+  const double L = D == 2 ? 0.04 : 0.012;
+  for (int k = 0; k < n; ++k) {
+    Vec<D> x, v;
+    for (int d = 0; d < D; ++d) {
+      x[d] = L * (0.05 + 0.9 * u(rng));
+      v[d] = 0.1 * (2 * u(rng) - 1);
+    }
+    sim.add_particle({.position = x, .radius = 4e-4 + 2e-4 * u(rng), .material = m, .velocity = v});
+  }
+  if constexpr (D == 2) {
+    sim.add_wall(walls::Segment{Vec2(0, 0), Vec2(L, 0)}, {.material = m});
+    sim.add_wall(walls::Segment{Vec2(0, 0), Vec2(0, L)}, {.material = m});
+    sim.add_wall(walls::Segment{Vec2(L, 0), Vec2(L, L)}, {.material = m});
+  } else {
+    for (int d = 0; d < 3; ++d) {
+      sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::Unit(d)}, {.material = m});
+      sim.add_wall(walls::Plane{Vec3::Constant(L), -Vec3::Unit(d)}, {.material = m});
+    }
+  }
+}
+
+template <class Sim>
+std::vector<double> state_bits(const Sim& sim) {
+  std::vector<double> out;
+  const auto& p = sim.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out.push_back(static_cast<double>(p.id[i]));
+    for (int d = 0; d < Sim::dimension; ++d) {
+      out.push_back(p.position[i][d]);
+      out.push_back(p.velocity[i][d]);
+      out.push_back(p.force[i][d]);
+    }
+    if constexpr (Sim::dimension == 2)
+      out.push_back(p.omega[i]);
+    else
+      for (int d = 0; d < 3; ++d) out.push_back(p.omega[i][d]);
+  }
+  return out;
+}
+} // namespace
+
+TEST_CASE("free flight under gravity is exact with velocity Verlet") {
+  Simulation<Sphere, search::CellList, Contact3> sim({.time_step = 1e-5, .gravity = Vec3(0, 0, -9.81)});
+  auto m = sim.add_material(soft);
+  sim.add_particle({.position = Vec3(0, 0, 1), .radius = 1e-3, .material = m, .velocity = Vec3(1, 0, 2)});
+  sim.steps(10000);
+  const double t = sim.time();
+  CHECK(t == doctest::Approx(0.1));
+  const auto& p = sim.particles();
+  CHECK(p.position[0].z() == doctest::Approx(1 + 2 * t - 0.5 * 9.81 * t * t).epsilon(1e-10));
+  CHECK(p.position[0].x() == doctest::Approx(t).epsilon(1e-12));
+  CHECK(p.velocity[0].z() == doctest::Approx(2 - 9.81 * t).epsilon(1e-10));
+}
+
+TEST_CASE("global damping decays the velocity exponentially") {
+  // m dv/dt = -c v  ->  v = v0 exp(-c t/m)
+  Simulation<Disk, search::AllPairs, Contact2, integrate::VelocityVerlet> sim(
+      {.time_step = 1e-5, .damping_translational = 1e-4, .damping_rotational = 1e-9});
+  auto m = sim.add_material(soft);
+  sim.add_particle({.position = Vec2::Zero(), .radius = 1e-3, .material = m, .velocity = Vec2(1, 0), .omega = 10.0});
+  sim.steps(1000);
+  const auto& p = sim.particles();
+  CHECK(p.velocity[0].x() == doctest::Approx(std::exp(-1e-4 * sim.time() / p.mass[0])).epsilon(1e-6));
+  CHECK(p.omega[0] == doctest::Approx(10.0 * std::exp(-1e-9 * sim.time() / p.inertia[0])).epsilon(1e-6));
+}
+
+#ifdef _OPENMP
+TEST_CASE("results are bit-identical with 1 and 2 threads") {
+  auto run3 = [](int threads) {
+    omp_set_num_threads(threads);
+    Simulation<Sphere, search::CellList, Contact3> sim({.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
+    settle_box(sim, 1200, 3);
+    sim.steps(300);
+    return state_bits(sim);
+  };
+  auto run2 = [](int threads) {
+    omp_set_num_threads(threads);
+    Simulation<Disk, search::CellList, Contact2> sim({.time_step = 2e-6, .gravity = Vec2(0, -9.81)});
+    settle_box(sim, 1200, 4);
+    sim.steps(300);
+    return state_bits(sim);
+  };
+  const int saved = omp_get_max_threads();
+  const auto a3 = run3(1), b3 = run3(2);
+  const auto a2 = run2(1), b2 = run2(2);
+  omp_set_num_threads(saved);
+  REQUIRE(a3.size() == b3.size());
+  CHECK(std::memcmp(a3.data(), b3.data(), a3.size() * sizeof(double)) == 0);
+  REQUIRE(a2.size() == b2.size());
+  CHECK(std::memcmp(a2.data(), b2.data(), a2.size() * sizeof(double)) == 0);
+}
+#endif
+
+TEST_CASE("a moving wall pushes a particle; a rotating drum drags it") {
+  // a piston moving at constant speed towards a resting disk: after the contact the disk moves
+  // away faster than the piston (elastic rebound from a moving wall: v = 2 V for e = 1)
+  Simulation<Disk, search::CellList, Interaction<normal::LinearSpringDashpot>> sim(
+      {.time_step = 1e-6, .contact = {.normal = {.stiffness = 1e3}}});
+  auto m = sim.add_material({.density = 2500, .young = 1e7, .poisson = 0.3, .restitution = 1.0});
+  sim.add_particle({.position = Vec2(0.01, 0), .radius = 1e-3, .material = m});
+  sim.add_wall(walls::Segment{Vec2(0, -0.01), Vec2(0, 0.01)}, {.material = m, .velocity = Vec2(0.1, 0)});
+  sim.run(0.1);
+  CHECK(sim.particles().velocity[0].x() == doctest::Approx(0.2).epsilon(1e-6));
+
+  // a disk resting on the inside bottom of a rotating drum is accelerated along the surface
+  Simulation<Disk, search::CellList, Contact2> drum(
+      {.time_step = 1e-6, .gravity = Vec2(0, -9.81), .contact = {.normal = {.stiffness = 1e4}}});
+  m = drum.add_material(soft);
+  drum.add_particle({.position = Vec2(0, -0.05 + 1e-3), .radius = 1e-3, .material = m});
+  drum.add_wall(walls::Circle{Vec2::Zero(), 0.05}, {.material = m, .omega = 1.0});
+  drum.run(0.02);
+  CHECK(drum.particles().velocity[0].x() > 1e-3);
+}
+
+TEST_CASE("a fixed particle keeps its velocity") {
+  Simulation<Sphere, search::AllPairs, Contact3> sim({.time_step = 1e-6, .gravity = Vec3(0, 0, -9.81)});
+  auto m = sim.add_material(soft);
+  sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = m, .velocity = Vec3(0, 0.1, 0), .fixed = true});
+  sim.add_particle({.position = Vec3(0, 0, 2.0005e-3), .radius = 1e-3, .material = m});
+  sim.steps(2000);
+  const auto i = sim.index_of(0);
+  CHECK(sim.particles().velocity[i] == Vec3(0, 0.1, 0));
+  CHECK(sim.particles().position[i].y() == doctest::Approx(0.1 * sim.time()).epsilon(1e-12));
+}
