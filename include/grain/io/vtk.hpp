@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <locale>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,7 @@ template <class Sim>
 void write_particles_vtk(const Sim& sim, const std::string& path) {
   std::ofstream o(path);
   if (!o) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
+  o.imbue(std::locale::classic());
   o << std::setprecision(17);
   const auto& p = sim.particles();
   const std::size_t n = p.size();
@@ -69,6 +71,8 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
                      int circle_segments = 64) {
   constexpr int D = Sim::dimension;
   using V = grain::Vec<D>;
+  grain::detail::require(circle_segments >= 3, "grain::io::write_walls_vtk", "circle_segments",
+                         circle_segments, "[3, inf)");
   std::vector<V> pts;
   std::vector<std::vector<std::size_t>> cells;
   std::vector<std::size_t> owner;
@@ -111,6 +115,7 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
   }
   std::ofstream o(path);
   if (!o) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
+  o.imbue(std::locale::classic());
   o << std::setprecision(17);
   o << "# vtk DataFile Version 3.0\ngrain walls t = " << sim.time() << "\nASCII\n"
     << "DATASET POLYDATA\nPOINTS " << pts.size() << " double\n";
