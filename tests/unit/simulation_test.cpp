@@ -144,3 +144,35 @@ TEST_CASE("a fixed particle keeps its velocity") {
   CHECK(sim.particles().velocity[i] == Vec3(0, 0.1, 0));
   CHECK(sim.particles().position[i].y() == doctest::Approx(0.1 * sim.time()).epsilon(1e-12));
 }
+
+TEST_CASE("each integrator's free-fall update is the scheme's closed form") {
+  // x_n for constant acceleration g after n steps of dt, from the update rules:
+  // forward Euler x += v dt, v += g dt        -> x0 + n v0 dt + g dt^2 n(n-1)/2
+  // symplectic Euler v += g dt, x += v dt     -> x0 + n v0 dt + g dt^2 n(n+1)/2
+  // Taylor 2 and velocity Verlet (exact)      -> x0 + v0 t + g t^2 / 2
+  const double dt = 5e-5, g = -9.81, v0 = 0.3;
+  const int n = 500;
+  auto fall = [&](auto integrator) {
+    using I = decltype(integrator);
+    Simulation<Disk, search::AllPairs, Contact2, I> sim({.time_step = dt, .gravity = Vec2(0, g)});
+    auto m = sim.add_material(soft);
+    sim.add_particle({.position = Vec2::Zero(), .radius = 1e-3, .material = m, .velocity = Vec2(0, v0)});
+    sim.steps(n);
+    return sim.particles().position[0].y();
+  };
+  const double t = n * dt;
+  CHECK(fall(integrate::ForwardEuler{}) == doctest::Approx(n * v0 * dt + g * dt * dt * n * (n - 1) / 2.0).epsilon(1e-11));
+  CHECK(fall(integrate::SymplecticEuler{}) == doctest::Approx(n * v0 * dt + g * dt * dt * n * (n + 1) / 2.0).epsilon(1e-11));
+  CHECK(fall(integrate::Taylor2{}) == doctest::Approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
+  CHECK(fall(integrate::VelocityVerlet{}) == doctest::Approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
+}
+
+TEST_CASE("rotation: a spinning sphere's orientation turns by omega t") {
+  Simulation<Sphere, search::AllPairs, Contact3> sim({.time_step = 5e-5});
+  auto m = sim.add_material(soft);
+  sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = m, .omega = Vec3(0, 0, 2.0)});
+  sim.steps(2000);
+  const Eigen::AngleAxisd aa(sim.particles().orientation[0]);
+  CHECK(aa.angle() == doctest::Approx(0.2).epsilon(1e-10));
+  CHECK(aa.axis().isApprox(Vec3::UnitZ()));
+}

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Installs the Debian packages grain needs for its examples, tests and benchmarks (only those
+# that are missing). Uses sudo when not run as root.
+set -euo pipefail
+packages=(build-essential cmake libeigen3-dev libboost-dev doctest-dev libbenchmark-dev
+          ccache python3-vtk9 python3-numpy)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
