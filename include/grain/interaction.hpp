@@ -4,11 +4,11 @@
 /// composition of contact models, and the per-contact pipeline.
 ///
 /// Pipeline of one contact (the only place where the order lives):
-/// 1. area correction (contact radius seen by conduction models);
-/// 2. normal force  -> NormalResult {force, stiffness, damping};
-/// 3. tangential force, given the normal result (Coulomb limit, default stiffness and damping);
-/// 4. torques: the tangential force about each centre (arm x F), then the rolling model;
-/// 5. conduction (heat rate), given the corrected contact radius.
+/// 1. normal force  -> NormalResult {force, stiffness, damping};
+/// 2. tangential force, given the normal result (Coulomb limit, default stiffness and damping);
+/// 3. torques: the tangential force about each centre (arm x F), then the rolling model.
+/// The conduction and area-correction slots are filled by the thermal layer; with their `None`
+/// defaults they add nothing to the pipeline.
 ///
 /// The per-contact history is composed of the non-empty histories of the models in use only; for
 /// models without history it costs zero bytes, and it is trivially copyable (a checkpoint or a

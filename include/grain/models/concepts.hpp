@@ -14,6 +14,7 @@
 #include <grain/contact/geometry.hpp>
 #include <grain/particles/material.hpp>
 #include <concepts>
+#include <utility>
 
 namespace grain {
 
@@ -44,6 +45,7 @@ concept fills_slot = requires {
   typename M::Params;
   typename M::template History<2>;
   typename M::template History<3>;
+  { M::validate(std::declval<const typename M::Params&>()) };
 } && std::is_trivially_copyable_v<typename M::template History<2>> &&
      std::is_trivially_copyable_v<typename M::template History<3>>;
 } // namespace detail

@@ -5,8 +5,7 @@
 ///   F_n = K_hz delta^(3/2) + F_damping,   K_hz = 4/3 E* sqrt(R*)      [N]
 ///
 /// (Hertz 1882; Johnson, Contact Mechanics, 1985.) E* [Pa] and R* [m] are the effective modulus
-/// and radius of the pair (a wall has infinite radius and, unless it has its own material,
-/// infinite stiffness). Elastic energy 2/5 K_hz delta^(5/2); tangent stiffness
+/// and radius of the pair (a flat wall has infinite radius; its material enters E*). Elastic energy 2/5 K_hz delta^(5/2); tangent stiffness
 /// dF/d delta = 3/2 K_hz sqrt(delta) = 2 E* a, a = sqrt(R* delta).
 ///
 /// Damping policies:
