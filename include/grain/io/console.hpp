@@ -4,13 +4,38 @@
 /// and `every(interval, actions...)` to call output actions at a fixed simulated-time interval.
 /// These helpers only read a simulation.
 
+#include <boost/hana/for_each.hpp>
+#include <boost/hana/tuple.hpp>
+#include <boost/hana/type.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <tuple>
 #include <utility>
 
 namespace grain::io {
+
+/// "normal: Hertz, tangent: spring-dashpot-slider, ..." for the models of an Interaction (the
+/// slots left at their `None` default are omitted).
+template <class Contact>
+std::string describe_contact() {
+  namespace hana = boost::hana;
+  constexpr auto models =
+      hana::tuple_t<typename Contact::normal_model, typename Contact::tangent_model,
+                    typename Contact::rolling_model, typename Contact::conduction_model,
+                    typename Contact::area_model>;
+  const char* slots[] = {"normal", "tangent", "rolling", "conduction", "area"};
+  std::string out;
+  int k = 0;
+  hana::for_each(models, [&](auto t) {
+    using M = typename decltype(t)::type;
+    const std::string name = M::name;
+    if (k == 0 || name != "none") out += std::string(out.empty() ? "" : ", ") + slots[k] + " " + name;
+    ++k;
+  });
+  return out;
+}
 
 /// Prints a summary when a run starts and when it ends.
 struct Summary {
@@ -28,11 +53,13 @@ struct Summary {
     const auto [pp, pw] = sim.contact_counts();
     std::fprintf(out,
                  "grain: %dD %s simulation, %zu particles, %zu walls, %zu materials\n"
+                 "       contact: %s\n"
                  "       search: %s (skin %.4g m); integrator: %s\n"
                  "       time step %.6g s (critical %.6g s); t = %.6g s -> %.6g s (%ld steps)\n"
                  "       contacts: %zu particle-particle, %zu particle-wall\n",
                  Sim::dimension, Sim::shape_type::name, sim.size(), sim.walls().size(),
-                 sim.materials().size(), Sim::search_type::name, sim.skin(),
+                 sim.materials().size(), describe_contact<typename Sim::contact_type>().c_str(),
+                 Sim::search_type::name, sim.skin(),
                  Sim::integrator_type::name, sim.time_step(), sim.critical_time_step(), sim.time(),
                  sim.end_time(),
                  static_cast<long>(std::llround((sim.end_time() - sim.time()) / sim.time_step())),
