@@ -465,6 +465,14 @@ private:
   }
 
   bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g) const {
+    return touching_pair(i, j, g, particles_.velocity, particles_.omega);
+  }
+  bool touching_wall(std::size_t i, std::size_t w, ContactGeometry<D>& g) const {
+    return touching_wall(i, w, g, particles_.velocity, particles_.omega);
+  }
+  /// Geometry of pair (i, j) if it touches, with the velocities `v`, `w`.
+  bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g, const std::vector<V>& v,
+                     const std::vector<A>& w) const {
     const auto& p = particles_;
     const V d = p.position[j] - p.position[i];
     const double d2 = d.squaredNorm();
@@ -472,15 +480,15 @@ private:
     if (d2 >= rs * rs) return false;
     const double dist = std::sqrt(d2);
     pair_geometry<D>(g, p.position[i], V(d / dist), dist, p.radius[i], p.radius[j],
-                     p.mass[i], p.mass[j], p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
+                     p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
     return true;
   }
-  bool touching_wall(std::size_t i, std::size_t w, ContactGeometry<D>& g) const {
+  bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g, const std::vector<V>& v,
+                     const std::vector<A>& w) const {
     const auto& p = particles_;
-    const auto prox = walls_[w].proximity(p.position[i]);
+    const auto prox = walls_[k].proximity(p.position[i]);
     if (prox.distance >= p.radius[i]) return false;
-    wall_geometry<D>(g, walls_[w], prox, p.position[i], p.radius[i], p.mass[i], p.velocity[i],
-                     p.omega[i]);
+    wall_geometry<D>(g, walls_[k], prox, p.position[i], p.radius[i], p.mass[i], v[i], w[i]);
     return true;
   }
 
@@ -564,11 +572,27 @@ private:
   }
 
   // ---------------------------------------------------------------- forces
+  /// Velocities the forces see. With velocity Verlet the state holds v(n+1/2) while forces are
+  /// computed; forces use the prediction v(n+1/2) + a(n) dt/2, so that velocity-dependent forces
+  /// (dashpots, global damping) are second-order accurate, and tangential springs still
+  /// integrate the half-step velocity that moved the particles (ContactGeometry::slip_velocity).
+  static constexpr bool predicts_velocity = IntegratorT::drift_before_forces;
+
   void compute_forces() {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
+    if constexpr (predicts_velocity) {
+      vf_.resize(p.size());
+      if constexpr (Contact::has_torque) wf_.resize(p.size());
+    }
+    const double half_dt = 0.5 * dt_;
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
+      if constexpr (predicts_velocity) {
+        vf_[i] = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
+        if constexpr (Contact::has_torque)
+          wf_[i] = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
+      }
       p.force[i] = V::Zero();
       p.torque[i] = zero<A>();
     }
@@ -587,21 +611,34 @@ private:
     const double ct = params_.damping_translational, cr = params_.damping_rotational;
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
-      p.force[i] += p.mass[i] * g - ct * p.velocity[i];
-      if constexpr (Contact::has_torque) p.torque[i] -= cr * p.omega[i];
+      p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
+      if constexpr (Contact::has_torque) p.torque[i] -= cr * force_omega()[i];
     }
+  }
+
+  const std::vector<V>& force_velocity() const {
+    if constexpr (predicts_velocity) return vf_;
+    else return particles_.velocity;
+  }
+  const std::vector<A>& force_omega() const {
+    if constexpr (predicts_velocity && Contact::has_torque) return wf_;
+    else return particles_.omega;
   }
 
   void contact_row(std::size_t i) {
     auto& p = particles_;
     ContactGeometry<D> g;
     const double dt = dt_;
+    const auto& vf = force_velocity();
+    const auto& wf = force_omega();
     for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
       const auto j = list_.partners[e];
-      if (!touching_pair(i, j, g)) {
+      if (!touching_pair(i, j, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) history_[e] = History{};
         continue;
       }
+      if constexpr (predicts_velocity && Contact::has_torque)
+        set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
       const auto& pair = pairs_[p.material[i] * materials_.size() + p.material[j]];
       auto r = Contact::evaluate(g, pair, params_.contact, hist(history_, e), dt);
       p.force[i] += r.force;
@@ -613,10 +650,12 @@ private:
     }
     for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
       const auto w = list_.walls[e];
-      if (!touching_wall(i, w, g)) {
+      if (!touching_wall(i, w, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) wall_history_[e] = History{};
         continue;
       }
+      if constexpr (predicts_velocity && Contact::has_torque)
+        set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
       const auto& pair = pairs_[p.material[i] * materials_.size() + walls_[w].options.material];
       auto r = Contact::evaluate(g, pair, params_.contact, hist(wall_history_, e), dt);
       p.force[i] += r.force;
@@ -678,6 +717,8 @@ private:
   NeighborList list_;
   std::vector<History> history_, wall_history_;
   std::vector<V> snapshot_;
+  std::vector<V> vf_; ///< velocities seen by the forces (velocity Verlet)
+  std::vector<A> wf_; ///< angular velocities seen by the forces (velocity Verlet)
   double dt_ = 0.0, time_ = 0.0, time_offset_ = 0.0, end_time_ = 0.0;
   double r_max_ = 0.0, skin_ = 0.0, reach_ = 0.0;
   long step_ = 0, steps_since_rebuild_ = 0;

@@ -92,7 +92,7 @@ TEST_CASE("spring-dashpot-slider: stick, Coulomb truncation, rotation, reverse")
   T::History<3> h;
   NormalResult n{.force = 1.0, .stiffness = 1000.0, .damping = 0.0};
   ContactGeometry<3> g = head_on(1e-5, 0.0);
-  g.tangential_velocity = Vec3(0, 1e-3, 0);
+  g.tangential_velocity = g.slip_velocity = Vec3(0, 1e-3, 0);
   const double dt = 1e-3;
   const double kt = (1 - 0.3) / (1 - 0.15) * 1000.0; // Mindlin ratio of the normal stiffness
   auto r = T::force(g, pair, n, {}, h, dt);
@@ -108,7 +108,7 @@ TEST_CASE("spring-dashpot-slider: stick, Coulomb truncation, rotation, reverse")
   // with its length kept
   const double len = load<3>(h.spring).norm();
   g.normal = Vec3(std::cos(0.3), std::sin(0.3), 0.0);
-  g.tangential_velocity = Vec3::Zero();
+  g.tangential_velocity = g.slip_velocity = Vec3::Zero();
   r = T::force(g, pair, n, {}, h, dt);
   CHECK(std::abs(load<3>(h.spring).dot(g.normal)) < 1e-15);
   CHECK(load<3>(h.spring).norm() == doctest::Approx(len).epsilon(1e-12));

@@ -11,6 +11,11 @@
 /// - `velocity` is the velocity of i relative to j at the contact point, rotation included:
 ///   (v_i + w_i x arm_i) - (v_j + w_j x arm_j) (wall: its surface velocity at x_c).
 ///   `normal_velocity` = velocity . n is positive while the pair approaches.
+/// - `slip_velocity` is the tangential relative velocity at the contact point that moved the
+///   contact over the last step; tangential springs integrate it (xi += slip_velocity dt). It
+///   equals `tangential_velocity` except with velocity Verlet, where forces see the velocity
+///   predicted at the end of the step (so that dashpots are second-order accurate) while positions
+///   advanced with the half-step velocity.
 /// - A wall is a partner of infinite radius and mass: r_eff = R_i (flat), R_i R_w/(R_w -+ R_i)
 ///   for the inside/outside of a circle; m_eff = m_i.
 /// - `contact_radius` is the geometric radius of the intersection of the two undeformed bodies
@@ -35,6 +40,7 @@ struct ContactGeometry {
   Vec<D> velocity;                ///< relative velocity at the contact point [m/s]
   double normal_velocity = 0.0;   ///< velocity . normal [m/s], > 0 approaching
   Vec<D> tangential_velocity;     ///< velocity - normal_velocity * normal [m/s]
+  Vec<D> slip_velocity;           ///< tangential velocity that moved the contact [m/s]
   Angular<D> omega_rel;           ///< w_i - w_j [rad/s]
   double radius_i = 0.0, radius_j = 0.0; ///< radius_j is infinite for a flat wall [m]
   double r_eff = 0.0;    ///< effective radius R* [m]
@@ -69,6 +75,7 @@ inline void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>&
   g.velocity = (vi + cross(wi, g.arm_i)) - (vj + cross(wj, g.arm_j));
   g.normal_velocity = g.velocity.dot(n);
   g.tangential_velocity = g.velocity - g.normal_velocity * n;
+  g.slip_velocity = g.tangential_velocity;
   g.omega_rel = wi - wj;
   g.radius_i = ri;
   g.radius_j = rj;
@@ -92,6 +99,7 @@ inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const Wall
   g.velocity = (v + cross(omega, g.arm_i)) - wall.velocity_at(g.point);
   g.normal_velocity = g.velocity.dot(w.normal);
   g.tangential_velocity = g.velocity - g.normal_velocity * w.normal;
+  g.slip_velocity = g.tangential_velocity;
   g.omega_rel = omega;
   g.radius_i = r;
   g.m_eff = m;
@@ -111,6 +119,20 @@ inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const Wall
   }
   g.omega_rel = omega;
   g.wall = true;
+}
+
+/// Sets `slip_velocity` from the velocities that moved the particles over the last step.
+template <int D>
+inline void set_slip_velocity(ContactGeometry<D>& g, const Vec<D>& vi, const Vec<D>& vj,
+                              const Angular<D>& wi, const Angular<D>& wj) {
+  const Vec<D> u = (vi + cross(wi, g.arm_i)) - (vj + cross(wj, g.arm_j));
+  g.slip_velocity = u - u.dot(g.normal) * g.normal;
+}
+template <int D>
+inline void set_slip_velocity(ContactGeometry<D>& g, const Wall<D>& wall, const Vec<D>& v,
+                              const Angular<D>& w) {
+  const Vec<D> u = (v + cross(w, g.arm_i)) - wall.velocity_at(g.point);
+  g.slip_velocity = u - u.dot(g.normal) * g.normal;
 }
 
 } // namespace grain

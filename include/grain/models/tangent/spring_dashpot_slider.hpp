@@ -5,7 +5,8 @@
 ///
 /// History: the spring elongation xi [m], a vector in the tangent plane. Each step
 /// 1. xi is rotated into the current tangent plane, keeping its length (the contact frame turns);
-/// 2. xi += v_t dt (v_t: tangential relative velocity at the contact point);
+/// 2. xi += v_s dt (v_s: the tangential relative velocity at the contact point that moved the
+///    contact over the step, `ContactGeometry::slip_velocity`);
 /// 3. trial force F_t = -k_t xi - eta_t v_t [N];
 /// 4. if |F_t| > mu |F_n| the contact slides: F_t is scaled to mu |F_n| and the spring is
 ///    truncated to the Coulomb limit, xi = -F_t / k_t (no damping while sliding).
@@ -71,7 +72,7 @@ struct SpringDashpotSlider {
       const double new2 = xi.squaredNorm();
       if (new2 > 0.0) xi *= std::sqrt(old2 / new2);
     }
-    xi += g.tangential_velocity * dt;
+    xi += g.slip_velocity * dt;
     TangentResult<D> r;
     r.force = -kt * xi - eta * g.tangential_velocity;
     const double mu = h.sliding ? pair.friction : pair.friction_static;
