@@ -21,7 +21,10 @@
 #include <grain/contact/geometry.hpp>
 #include <grain/models/concepts.hpp>
 #include <grain/models/normal/hertz.hpp>
+#include <grain/models/normal/hertz_damping.hpp>
+#include <grain/models/normal/hertz_equivalent.hpp>
 #include <grain/models/normal/linear_spring_dashpot.hpp>
+#include <grain/models/normal/walton_braun.hpp>
 #include <grain/models/tangent/none.hpp>
 #include <grain/models/tangent/spring_dashpot_slider.hpp>
 #include <grain/models/rolling/none.hpp>

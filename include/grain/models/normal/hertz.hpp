@@ -1,47 +1,63 @@
 #pragma once
 /// \file hertz.hpp
-/// Hertz elastic normal force with a viscous part chosen by a damping policy.
+/// Nonlinear visco-elastic normal force: Hertz elastic force plus a viscous part chosen by a
+/// damping policy (the template argument).
 ///
-///   F_n = K_hz delta^(3/2) + F_damping,   K_hz = 4/3 E* sqrt(R*)      [N]
+///   F_n = K_hz delta^(3/2) + eta(delta) d(delta)/dt,   K_hz = 4/3 E* sqrt(R*)      [N]
 ///
-/// (Hertz 1882; Johnson, Contact Mechanics, 1985.) E* [Pa] and R* [m] are the effective modulus
-/// and radius of the pair (a flat wall has infinite radius; its material enters E*). Elastic energy 2/5 K_hz delta^(5/2); tangent stiffness
-/// dF/d delta = 3/2 K_hz sqrt(delta) = 2 E* a, a = sqrt(R* delta).
+/// (Hertz, J. reine angew. Math. 92 (1882) 156; Johnson, Contact Mechanics, 1985.) E* [Pa] and
+/// R* [m] are the effective modulus and radius of the pair (a flat wall has infinite radius, so
+/// R* = R; its E* comes from the wall's material). Elastic energy 2/5 K_hz delta^(5/2); tangent
+/// stiffness dF/d delta = 3/2 K_hz sqrt(delta) = 2 E* a, a = sqrt(R* delta).
 ///
-/// Damping policies:
-/// - `TsujiDamping` (default; Tsuji, Tanaka & Ishida, Powder Technol. 71 (1992) 239):
-///   F_damping = alpha sqrt(m* K_hz) delta^(1/4) d(delta)/dt with the exact restitution map
-///   alpha = sqrt(5) |ln e| / sqrt(ln^2 e + pi^2) (Antypov & Elliott, EPL 94 (2011) 50004), so an
-///   isolated contact rebounds with the pair's restitution e for any impact velocity. This is
-///   also the damping of LIGGGHTS' "hertz" model.
+/// Damping policies (hertz_damping.hpp), each with its own parameters in `Params::damping`:
+/// - `TsujiDamping` (default): eta = alpha sqrt(m* K_hz) delta^(1/4), alpha from the pair's
+///   restitution by the exact map sqrt(5) |ln e| / sqrt(ln^2 e + pi^2) (or DEMLab's Norouzi fit,
+///   or given); an isolated contact rebounds with e for any impact velocity.
+/// - `CriticalRatioDamping`: eta = xi sqrt(8 E* m* sqrt(R*)) delta^(1/4), xi given.
+/// - `KuwabaraKonoDamping`: eta = eta_KK delta^(1/2), eta_KK given.
+/// - `LeeHerrmannDamping`: eta = eta_LH m*, eta_LH given.
 ///
-/// `no_cohesion` clamps F_n >= 0.
+/// `no_cohesion` clamps F_n >= 0 (no attraction at the end of a damped contact; the rebound is
+/// then faster than the unclamped one, e.g. e = 0.1 gives 0.2527 with Tsuji damping).
+/// History: none.
 
 #include <grain/models/concepts.hpp>
+#include <grain/models/normal/hertz_damping.hpp>
 #include <cmath>
-#include <numbers>
+#include <string>
+
+namespace grain::detail {
+/// The readable name of `Hertz<Damping>`: the policy's `hertz_name`, or "Hertz".
+template <class Damping>
+constexpr const char* hertz_name() {
+  if constexpr (requires { Damping::hertz_name; })
+    return Damping::hertz_name;
+  else
+    return "Hertz";
+}
+} // namespace grain::detail
 
 namespace grain::normal {
-
-/// Tsuji-type damping with a restitution-derived coefficient.
-struct TsujiDamping {
-  static constexpr const char* name = "Tsuji";
-  /// alpha(e) = sqrt(5) |ln e| / sqrt(ln^2 e + pi^2).
-  static double alpha(const PairProperties& pair) { return std::sqrt(5.0) * pair.damping_ratio(); }
-};
 
 template <class Damping = TsujiDamping>
 struct Hertz {
   static constexpr Slot slot = Slot::normal;
-  static constexpr const char* name = "Hertz";
+  /// e.g. "Hertz with Tsuji damping"
+  static constexpr const char* name = detail::hertz_name<Damping>();
 
   struct Params {
-    bool no_cohesion = false; ///< clamp the force at zero (no attraction)
+    bool no_cohesion = false;           ///< clamp the force at zero (no attraction)
+    typename Damping::Params damping{}; ///< coefficients of the damping policy
   };
   template <int D>
   struct History {};
 
-  static void validate(const Params&) {}
+  static std::string object() {
+    return std::string("normal::Hertz<normal::") + Damping::name + ">";
+  }
+
+  static void validate(const Params& p) { Damping::validate(p.damping, object()); }
 
   /// K_hz = 4/3 E* sqrt(R*) [N/m^1.5].
   static double k_hertz(const PairProperties& pair, double r_eff) {
@@ -54,18 +70,19 @@ struct Hertz {
     const double kh = k_hertz(pair, g.r_eff);
     const double sd = std::sqrt(g.overlap);
     const double fe = kh * g.overlap * sd;
-    const double eta = Damping::alpha(pair) * std::sqrt(g.m_eff * kh * sd);
+    const double eta = Damping::coefficient(pair, p.damping, kh, g.r_eff, g.m_eff, sd);
     double f = fe + eta * g.normal_velocity;
     if (p.no_cohesion && f < 0.0) f = 0.0;
     return {f, 1.5 * kh * sd, eta, 0.4 * fe * g.overlap};
   }
 
   /// Tangent stiffness at the maximum overlap of an undamped impact at velocity v [m/s]:
-  /// delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5).
+  /// delta_max = (15 m* v^2 / (16 E* sqrt(R*)))^(2/5) (damping only lowers delta_max).
   static double stiffness_estimate(const PairProperties& pair, const Params&, double r_eff,
                                    double m_eff, double v) {
     const double kh = k_hertz(pair, r_eff);
-    const double dmax = std::pow(15.0 * m_eff * v * v / (16.0 * pair.young_eff * std::sqrt(r_eff)), 0.4);
+    const double dmax =
+        std::pow(15.0 * m_eff * v * v / (16.0 * pair.young_eff * std::sqrt(r_eff)), 0.4);
     return 1.5 * kh * std::sqrt(dmax);
   }
 };
