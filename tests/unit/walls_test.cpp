@@ -115,3 +115,16 @@ TEST_CASE("wall motion: translation, rotation about the pivot, surface velocity"
   plane.move(2.0);
   CHECK(plane.proximity(Vec3(0, 0, 1)).distance == doctest::Approx(0.8));
 }
+
+TEST_CASE("a particle turning with a rotating wall has no relative rotation") {
+  // a disk carried rigidly by a drum (same angular velocity, contact point moving with the
+  // surface) has zero relative velocity and zero relative rotation at the contact
+  auto drum = make<2>(walls::Circle{Vec2::Zero(), 1.0}, {.omega = 0.7});
+  const double r = 0.1;
+  const Vec2 x(0.0, -0.905);
+  ContactGeometry<2> g;
+  const Vec2 v = cross(0.7, x); // rigid rotation of the centre about the drum axis
+  wall_geometry<2>(g, drum, drum.proximity(x), x, r, 1.0, v, 0.7);
+  CHECK(g.omega_rel == doctest::Approx(0.0));
+  CHECK(g.velocity.norm() < 1e-14);
+}

@@ -11,11 +11,13 @@
 /// - `velocity` is the velocity of i relative to j at the contact point, rotation included:
 ///   (v_i + w_i x arm_i) - (v_j + w_j x arm_j) (wall: its surface velocity at x_c).
 ///   `normal_velocity` = velocity . n is positive while the pair approaches.
+/// - `omega_rel` is w_i - w_j (for a wall, w_i minus the wall's angular velocity).
 /// - `slip_velocity` is the tangential relative velocity at the contact point that moved the
 ///   contact over the last step; tangential springs integrate it (xi += slip_velocity dt). It
 ///   equals `tangential_velocity` except with velocity Verlet, where forces see the velocity
 ///   predicted at the end of the step (so that dashpots are second-order accurate) while positions
-///   advanced with the half-step velocity.
+///   advanced with the half-step velocity. `slip_omega_rel` is the rotational counterpart (used by
+///   rolling springs).
 /// - A wall is a partner of infinite radius and mass: r_eff = R_i (flat), R_i R_w/(R_w -+ R_i)
 ///   for the inside/outside of a circle; m_eff = m_i.
 /// - `contact_radius` is the geometric radius of the intersection of the two undeformed bodies
@@ -41,7 +43,8 @@ struct ContactGeometry {
   double normal_velocity = 0.0;   ///< velocity . normal [m/s], > 0 approaching
   Vec<D> tangential_velocity;     ///< velocity - normal_velocity * normal [m/s]
   Vec<D> slip_velocity;           ///< tangential velocity that moved the contact [m/s]
-  Angular<D> omega_rel;           ///< w_i - w_j [rad/s]
+  Angular<D> omega_rel;           ///< w_i - w_j (wall: w_i - w_wall) [rad/s]
+  Angular<D> slip_omega_rel;      ///< w_i - w_j that turned the contact over the last step
   double radius_i = 0.0, radius_j = 0.0; ///< radius_j is infinite for a flat wall [m]
   double r_eff = 0.0;    ///< effective radius R* [m]
   double m_eff = 0.0;    ///< effective mass m* [kg]
@@ -77,6 +80,7 @@ inline void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>&
   g.tangential_velocity = g.velocity - g.normal_velocity * n;
   g.slip_velocity = g.tangential_velocity;
   g.omega_rel = wi - wj;
+  g.slip_omega_rel = g.omega_rel;
   g.radius_i = ri;
   g.radius_j = rj;
   g.r_eff = ri * rj / (ri + rj);
@@ -100,7 +104,8 @@ inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const Wall
   g.normal_velocity = g.velocity.dot(w.normal);
   g.tangential_velocity = g.velocity - g.normal_velocity * w.normal;
   g.slip_velocity = g.tangential_velocity;
-  g.omega_rel = omega;
+  g.omega_rel = omega - wall.options.omega;
+  g.slip_omega_rel = g.omega_rel;
   g.radius_i = r;
   g.m_eff = m;
   if (std::isinf(w.curvature_radius)) {
@@ -117,7 +122,6 @@ inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const Wall
     const double centre_distance = rw > 0 ? w.distance + rc : rc - w.distance;
     g.contact_radius = centre_distance > 0 ? detail::lens_radius(r, rc, centre_distance) : r;
   }
-  g.omega_rel = omega;
   g.wall = true;
 }
 
@@ -127,12 +131,14 @@ inline void set_slip_velocity(ContactGeometry<D>& g, const Vec<D>& vi, const Vec
                               const Angular<D>& wi, const Angular<D>& wj) {
   const Vec<D> u = (vi + cross(wi, g.arm_i)) - (vj + cross(wj, g.arm_j));
   g.slip_velocity = u - u.dot(g.normal) * g.normal;
+  g.slip_omega_rel = wi - wj;
 }
 template <int D>
 inline void set_slip_velocity(ContactGeometry<D>& g, const Wall<D>& wall, const Vec<D>& v,
                               const Angular<D>& w) {
   const Vec<D> u = (v + cross(w, g.arm_i)) - wall.velocity_at(g.point);
   g.slip_velocity = u - u.dot(g.normal) * g.normal;
+  g.slip_omega_rel = w - wall.options.omega;
 }
 
 } // namespace grain

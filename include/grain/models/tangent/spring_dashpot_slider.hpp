@@ -1,24 +1,33 @@
 #pragma once
 /// \file spring_dashpot_slider.hpp
-/// Linear spring-dashpot-slider tangential force with an incremental spring (Cundall & Strack
-/// 1979; history handling as in Luding, Granular Matter 10 (2008) 235).
+/// Linear spring-dashpot-slider tangential force with an incremental spring (Cundall & Strack,
+/// Geotechnique 29 (1979) 47; history handling as in Luding, Granular Matter 10 (2008) 235).
 ///
-/// History: the spring elongation xi [m], a vector in the tangent plane. Each step
-/// 1. xi is rotated into the current tangent plane, keeping its length (the contact frame turns);
-/// 2. xi += v_s dt (v_s: the tangential relative velocity at the contact point that moved the
-///    contact over the step, `ContactGeometry::slip_velocity`);
-/// 3. trial force F_t = -k_t xi - eta_t v_t [N];
-/// 4. if |F_t| > mu |F_n| the contact slides: F_t is scaled to mu |F_n| and the spring is
-///    truncated to the Coulomb limit, xi = -F_t / k_t (no damping while sliding).
+///   F_t = -k_t xi - eta_t v_t,  |F_t| <= mu |F_n|                                     [N]
 ///
-/// - k_t [N/m]: `stiffness` if given, else `stiffness_ratio` x the normal model's tangent
-///   stiffness; the default ratio (1 - nu)/(1 - nu/2) (nu: mean Poisson ratio of the pair) makes
-///   k_t the Mindlin no-slip stiffness 8 G* a for a Hertz contact.
-/// - eta_t [N s/m]: `damping` if given, else the normal damping scaled to the same damping ratio,
-///   eta_t = eta_n sqrt(k_t / k_n).
-/// - mu: the pair's friction coefficient (static while sticking, dynamic while sliding).
+/// History: the spring elongation xi [m], a vector in the tangent plane, rotated with the contact,
+/// incremented by the slip velocity that moved the contact (`ContactGeometry::slip_velocity`)
+/// and truncated at the Coulomb limit (see stick_slip.hpp); sliding at mu_d, sticking tested
+/// against mu_s. v_t is the tangential relative velocity at the contact point seen by the forces.
+///
+/// - k_t [N/m]: `stiffness` if > 0, else `stiffness_ratio` x the normal model's tangent
+///   stiffness k_n; the default ratio (1 - nu)/(1 - nu/2) (nu: mean Poisson ratio of the pair)
+///   makes k_t the Mindlin no-slip stiffness 8 G* a for a Hertz contact of equal materials.
+/// - eta_t [N s/m], in this order:
+///   `damping` if >= 0;
+///   else from the tangential restitution coefficient `restitution` = e_t in [0, 1] if given
+///   (Deen, van Sint Annaland, van der Hoef & Kuipers, Chem. Eng. Sci. 62 (2007) 28):
+///   eta_t = -2 ln(e_t) sqrt(m* k_t / (kappa (ln^2 e_t + pi^2))), eta_t = 2 sqrt(m* k_t/kappa)
+///   for e_t = 0, where m*/kappa is the effective mass of the tangential motion of a sticking
+///   contact, kappa = 1 + m R^2/I: 7/2 for spheres (Deen's 2 m*/7), 3 for solid disks; set
+///   `kappa` = 3.5 for 2D disks with sphere mass;
+///   else the normal damping scaled to the same damping ratio, eta_t = eta_n sqrt(k_t / k_n).
+/// - mu_s, mu_d: the pair's static and dynamic friction coefficients.
+///
+/// Defaults: stiffness 0 (derived), stiffness_ratio 0 (Mindlin), damping -1 (normal ratio),
+/// restitution -1 (not used), kappa 0 (by dimension).
 
-#include <grain/models/concepts.hpp>
+#include <grain/models/tangent/stick_slip.hpp>
 #include <cmath>
 
 namespace grain::tangent {
@@ -30,67 +39,48 @@ struct SpringDashpotSlider {
   struct Params {
     double stiffness = 0.0;       ///< k_t [N/m]; 0 = stiffness_ratio x normal stiffness
     double stiffness_ratio = 0.0; ///< k_t/k_n; 0 = (1 - nu)/(1 - nu/2)
-    double damping = -1.0;        ///< eta_t [N s/m]; < 0 = same damping ratio as normal
+    double damping = -1.0;        ///< eta_t [N s/m]; < 0 = from restitution or normal ratio
+    double restitution = -1.0;    ///< tangential restitution e_t in [0, 1]; < 0 = not used
+    double kappa = 0.0;           ///< 1 + m R^2/I; 0 = 7/2 (3D) or 3 (2D)
   };
   template <int D>
-  struct History {
-    PlainVec<D> spring{}; ///< elongation xi [m]
-    bool sliding = false;
-  };
+  using History = detail::SpringHistory<D>;
 
   static void validate(const Params& p) {
-    detail::require_non_negative("tangent::SpringDashpotSlider", "stiffness", p.stiffness);
-    detail::require_non_negative("tangent::SpringDashpotSlider", "stiffness_ratio",
-                                 p.stiffness_ratio);
-    detail::require(std::isfinite(p.damping), "tangent::SpringDashpotSlider", "damping",
-                    p.damping, "[0, inf), or < 0 for the normal damping ratio");
+    constexpr const char* m = "tangent::SpringDashpotSlider";
+    grain::detail::require_non_negative(m, "stiffness", p.stiffness);
+    grain::detail::require_non_negative(m, "stiffness_ratio", p.stiffness_ratio);
+    grain::detail::require(std::isfinite(p.damping), m, "damping", p.damping,
+                           "[0, inf), or < 0 for restitution or the normal damping ratio");
+    detail::validate_restitution(m, p.restitution);
+    detail::validate_kappa(m, p.kappa);
   }
 
   template <int D>
   static void reverse(History<D>& h) {
-    for (auto& c : h.spring) c = -c;
+    detail::negate<D>(h.spring);
+  }
+
+  /// k_t [N/m] and eta_t [N s/m] of a contact.
+  template <int D>
+  static detail::LinearSpring spring(const ContactGeometry<D>& g, const PairProperties& pair,
+                                     const NormalResult& n, const Params& p) {
+    const double kt = detail::linear_stiffness(p.stiffness, p.stiffness_ratio, pair, n);
+    double eta;
+    if (p.damping >= 0.0)
+      eta = p.damping;
+    else if (p.restitution >= 0.0)
+      eta = detail::restitution_damping(p.restitution, g.m_eff, kt, detail::kappa<D>(p.kappa));
+    else
+      eta = detail::normal_ratio_damping(n, kt);
+    return {kt, eta};
   }
 
   template <int D>
   static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h,
-                                double dt) {
-    double kt = p.stiffness;
-    if (kt <= 0.0) {
-      const double nu = pair.poisson_avg;
-      const double ratio = p.stiffness_ratio > 0.0 ? p.stiffness_ratio : (1.0 - nu) / (1.0 - 0.5 * nu);
-      kt = ratio * n.stiffness;
-    }
-    const double eta = p.damping >= 0.0 ? p.damping
-                       : n.stiffness > 0.0 ? n.damping * std::sqrt(kt / n.stiffness)
-                                           : 0.0;
-    // rotate the old spring into the current tangent plane, keeping its length
-    Vec<D> xi = load<D>(h.spring);
-    const double old2 = xi.squaredNorm();
-    if (old2 > 0.0) {
-      xi -= xi.dot(g.normal) * g.normal;
-      const double new2 = xi.squaredNorm();
-      if (new2 > 0.0) xi *= std::sqrt(old2 / new2);
-    }
-    xi += g.slip_velocity * dt;
-    TangentResult<D> r;
-    r.force = -kt * xi - eta * g.tangential_velocity;
-    const double mu = h.sliding ? pair.friction : pair.friction_static;
-    const double limit = mu * std::abs(n.force);
-    const double f2 = r.force.squaredNorm();
-    if (f2 > limit * limit) {
-      // Coulomb: the force has the limit magnitude; the spring is truncated to it.
-      const double dyn = pair.friction * std::abs(n.force);
-      r.force *= dyn / std::sqrt(f2);
-      xi = kt > 0.0 ? Vec<D>(-r.force / kt) : Vec<D>(Vec<D>::Zero());
-      h.sliding = true;
-      r.sliding = true;
-    } else {
-      h.sliding = false;
-    }
-    store<D>(h.spring, xi);
-    r.elastic_energy = 0.5 * kt * xi.squaredNorm();
-    return r;
+                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+    return detail::spring_step<D>(g, pair, n.force, spring<D>(g, pair, n, p), h.spring, &h.sliding,
+                                  dt);
   }
 };
 
