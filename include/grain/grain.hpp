@@ -44,6 +44,7 @@
 #include <grain/models/conduction/none.hpp>
 #include <grain/models/area/none.hpp>
 #include <grain/interaction.hpp>
+#include <grain/presets.hpp>
 #include <grain/integrate/integrators.hpp>
 #include <grain/search/search.hpp>
 #include <grain/simulation.hpp>

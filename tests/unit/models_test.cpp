@@ -140,3 +140,10 @@ TEST_CASE("interaction: action equals reaction and torques from the contact poin
   const Vec3 total = xi.cross(r.force) + xj.cross(-r.force) + r.torque_i + r.torque_j;
   CHECK(total.norm() < 1e-12 * r.force.norm() * 1e-3);
 }
+
+// presets are ordinary interactions; their histories hold only what their models need
+static_assert(sizeof(presets::HertzMindlin::History<3>) == sizeof(tangent::Mindlin::History<3>));
+static_assert(presets::LinearCoulomb::stateless<3> == false);
+static_assert(presets::HertzMindlinRolling::has_torque);
+static_assert(sizeof(presets::HertzMindlinEPSD::History<3>) <=
+              sizeof(tangent::Mindlin::History<3>) + sizeof(rolling::EPSD::History<3>));
