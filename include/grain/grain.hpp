@@ -14,6 +14,8 @@
 
 #include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
+#include <grain/core/table.hpp>
+#include <grain/core/time_function.hpp>
 #include <grain/particles/material.hpp>
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
