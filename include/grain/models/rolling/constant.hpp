@@ -40,7 +40,7 @@ struct Constant {
     const A w = detail::rolling_omega(g);
     const double s = norm(w);
     if (!(s > 0.0)) return;
-    const double mr = detail::coefficient(p.coefficient, pair) * g.r_eff * std::abs(n.force);
+    const double mr = detail::coefficient(p.coefficient, pair) * g.r_eff * std::max(n.force, 0.0);
     detail::apply<A>(A((-mr / s) * w), ti, tj);
   }
 };

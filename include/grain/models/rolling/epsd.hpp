@@ -34,6 +34,7 @@
 /// - c: `inertia_factor` if > 0, else 2/5 (3D) or 1/2 (2D); 2/5 for 2D disks with sphere mass.
 
 #include <grain/models/rolling/relative_rotation.hpp>
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -107,7 +108,7 @@ struct EPSD {
     const A w = detail::rolling_omega(g);
     A mk = spring_torque(h, g.normal);
     mk -= kr * dt * detail::rolling_slip_omega(g);
-    const double limit = mu * g.r_eff * std::abs(n.force);
+    const double limit = mu * g.r_eff * std::max(n.force, 0.0);
     const double size = norm(mk);
     const bool full = size > limit;
     if (full) mk *= size > 0.0 ? limit / size : 0.0;

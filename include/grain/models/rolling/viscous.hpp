@@ -37,7 +37,7 @@ struct Viscous {
                      const Params& p, History<D>&, double, A& ti, A& tj) {
     if (!(g.overlap > 0.0)) return;
     const double c =
-        detail::coefficient(p.coefficient, pair) * g.r_eff * g.r_eff * std::abs(n.force);
+        detail::coefficient(p.coefficient, pair) * g.r_eff * g.r_eff * std::max(n.force, 0.0);
     detail::apply<A>(A(-c * detail::rolling_omega(g)), ti, tj);
   }
 };

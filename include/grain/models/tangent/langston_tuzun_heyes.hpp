@@ -22,6 +22,7 @@
 /// - eta_t [-]: `damping`, a dimensionless damping ratio (default 0: no dashpot).
 
 #include <grain/models/tangent/stick_slip.hpp>
+#include <algorithm>
 #include <cmath>
 
 namespace grain::tangent {
@@ -66,7 +67,7 @@ struct LangstonTuzunHeyes {
   static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
                                 const NormalResult& n, const Params& p, History<D>& h, double dt) {
     Law law;
-    law.fs = detail::static_friction(pair) * std::abs(n.force);
+    law.fs = detail::static_friction(pair) * std::max(n.force, 0.0);
     law.dmax = detail::full_slip_elongation<D>(g, pair);
     law.eta = p.damping;
     law.m_eff = g.m_eff;

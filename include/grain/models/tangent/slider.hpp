@@ -37,7 +37,7 @@ struct Slider {
     if (!(g.overlap > 0.0)) return r;
     const double speed = g.tangential_velocity.norm();
     if (speed > 0.0) {
-      r.force = (-pair.friction * std::abs(n.force) / speed) * g.tangential_velocity;
+      r.force = (-pair.friction * std::max(n.force, 0.0) / speed) * g.tangential_velocity;
       r.sliding = true;
     }
     return r;

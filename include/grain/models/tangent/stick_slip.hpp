@@ -105,14 +105,16 @@ inline void negate(PlainVec<D>& s) {
 }
 
 /// Coulomb test of a trial force f on a contact with normal force fn. Returns true (sliding)
-/// and scales f to mu_d |fn| if |f| exceeds mu |fn| (mu = mu_d if `was_sliding`, else mu_s).
+/// and scales f to mu_d max(fn, 0) if |f| exceeds mu max(fn, 0) (mu = mu_d if `was_sliding`,
+/// else mu_s). Only a compressive normal force carries friction: while a damped contact pulls
+/// (fn < 0 at the end of an unclamped contact) there is no tangential force.
 template <int D>
 inline bool coulomb(Vec<D>& f, const PairProperties& pair, double fn, bool was_sliding) {
   const double mu = was_sliding ? pair.friction : static_friction(pair);
-  const double limit = mu * std::abs(fn);
+  const double limit = mu * std::max(fn, 0.0);
   const double f2 = f.squaredNorm();
   if (f2 <= limit * limit) return false;
-  f *= pair.friction * std::abs(fn) / std::sqrt(f2);
+  f *= pair.friction * std::max(fn, 0.0) / std::sqrt(f2);
   return true;
 }
 

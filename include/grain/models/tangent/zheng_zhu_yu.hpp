@@ -60,7 +60,7 @@ struct ZhengZhuYu {
   static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
                                 const NormalResult& n, const Params& p, History<D>& h, double dt) {
     Law law;
-    law.fs = detail::static_friction(pair) * std::abs(n.force);
+    law.fs = detail::static_friction(pair) * std::max(n.force, 0.0);
     law.dmax = detail::full_slip_elongation<D>(g, pair);
     law.eta = p.viscosity;
     law.shear = pair.shear_eff;
