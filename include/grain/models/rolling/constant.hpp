@@ -16,6 +16,7 @@
 /// - mu_r: `coefficient` if >= 0, else the pair's `rolling_friction` (default -1).
 
 #include <grain/models/rolling/relative_rotation.hpp>
+#include <algorithm>
 
 namespace grain::rolling {
 

@@ -15,6 +15,7 @@
 /// - mu_r: `coefficient` if >= 0, else the pair's `rolling_friction`, read in s/m (default -1).
 
 #include <grain/models/rolling/relative_rotation.hpp>
+#include <algorithm>
 
 namespace grain::rolling {
 

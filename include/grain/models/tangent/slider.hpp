@@ -17,6 +17,7 @@
 /// the slip velocity, which is its definition.
 
 #include <grain/models/tangent/stick_slip.hpp>
+#include <algorithm>
 
 namespace grain::tangent {
 
