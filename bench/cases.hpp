@@ -1,7 +1,11 @@
 #pragma once
-// The benchmark cases of docs/performance.md, built with grain's public API.
+// The benchmark cases of docs/performance.md, built with grain's public API: settle3d (spheres,
+// Hertz-Mindlin, 6 planes) and pack2d (disks, linear spring-dashpot, 4 walls), set up as the
+// LIGGGHTS and LAMMPS inputs they are compared with, and the end-of-run figures those inputs
+// print.
 #include <grain/grain.hpp>
 #include <cmath>
+#include <cstddef>
 
 namespace grain::bench {
 
@@ -11,6 +15,23 @@ inline double rseq(long n, double alpha) {
   return x - std::floor(x);
 }
 
+/// Material of both cases (particles and walls): E softened to 1e7 Pa, nu = 0.3, e = 0.5,
+/// mu = 0.5, no rolling friction. In 2D the density times the disk thickness (1 mm) gives the
+/// areal density 2.5 kg/m^2 of the peer inputs.
+inline Material case_material() {
+  return {.name = "soft", .density = 2500, .young = 1e7, .poisson = 0.3, .restitution = 0.5,
+          .friction = 0.5};
+}
+
+inline constexpr double case_diameter = 1e-3;  ///< d [m]
+inline constexpr double case_time_step = 2.5e-6; ///< dt [s]
+inline constexpr double case_v0 = 0.1;          ///< amplitude of the initial velocities [m/s]
+
+// ------------------------------------------------------------------ settle3d
+
+/// LIGGGHTS `model hertz tangential history`: Hertz with Tsuji damping from e (eta_n equals
+/// LIGGGHTS' gamma_n), tangential stiffness at the Mindlin ratio (k_t = 8 G* a) and damping at
+/// the normal damping ratio (eta_t equals LIGGGHTS' gamma_t).
 using Settle3dContact = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider>;
 template <class Search = search::CellList>
 using Settle3d = Simulation<Sphere, Search, Settle3dContact, integrate::VelocityVerlet>;
@@ -19,10 +40,10 @@ using Settle3d = Simulation<Sphere, Search, Settle3dContact, integrate::Velocity
 /// Hertz-Mindlin with e = 0.5, mu = 0.5, E = 1e7 Pa, nu = 0.3, dt = 2.5e-6 s, gravity -z.
 template <class Search = search::CellList>
 Settle3d<Search> make_settle3d(int nx, int ny, int nz) {
-  const double d = 1e-3, r = 0.5 * d, a = 1.02 * d, v0 = 0.1;
-  Settle3d<Search> sim({.time_step = 2.5e-6, .gravity = Vec3(0, 0, -9.81), .search = {.skin = 0.1 * d}});
-  const auto m = sim.add_material({.name = "soft", .density = 2500, .young = 1e7, .poisson = 0.3,
-                                   .restitution = 0.5, .friction = 0.5});
+  const double d = case_diameter, r = 0.5 * d, a = 1.02 * d, v0 = case_v0;
+  Settle3d<Search> sim(
+      {.time_step = case_time_step, .gravity = Vec3(0, 0, -9.81), .search = {.skin = 0.1 * d}});
+  const auto m = sim.add_material(case_material());
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
@@ -38,6 +59,90 @@ Settle3d<Search> make_settle3d(int nx, int ny, int nz) {
     sim.add_wall(walls::Plane{hi, -Vec3::Unit(dim)}, {.name = "high", .material = m});
   }
   return sim;
+}
+
+// ------------------------------------------------------------------ pack2d
+
+/// LIGGGHTS `model hooke tangential history` (characteristicVelocity 1 m/s): a linear
+/// spring-dashpot whose stiffness is the Hertz-equivalent one at 1 m/s by the energy formulation,
+/// K = (16/15)^(4/5) (v R* E*^2 sqrt(m*))^(2/5) (LIGGGHTS' kn), with the damping of e
+/// (LIGGGHTS' gamma_n); tangential spring k_t = K and, at the normal damping ratio, eta_t =
+/// eta_n (LIGGGHTS' kt = kn, gamma_t = gamma_n).
+using Pack2dContact = Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider>;
+template <class Search = search::CellList>
+using Pack2d = Simulation<Disk, Search, Pack2dContact, integrate::VelocityVerlet>;
+
+/// Contact coefficients of pack2d (see Pack2dContact).
+inline Pack2dContact::Params pack2d_contact() {
+  Pack2dContact::Params c;
+  c.normal.reference_velocity = 1.0;
+  c.normal.equivalence = normal::Equivalence::energy;
+  c.tangent.stiffness_ratio = 1.0;
+  return c;
+}
+
+/// pack2d: disks d = 1 mm, 1 mm thick (m = pi r^2 x 2.5 kg/m^2, I = 1/2 m r^2), on a square
+/// lattice (spacing 1.001 d) in a box of 4 walls, linear spring-dashpot with e = 0.5, mu = 0.5,
+/// dt = 2.5e-6 s, gravity -y. The walls are segments that reach one diameter beyond the box, so
+/// that every disk inside meets them as the infinite planes of the peer inputs.
+template <class Search = search::CellList>
+Pack2d<Search> make_pack2d(int nx, int ny) {
+  const double d = case_diameter, r = 0.5 * d, a = 1.001 * d, v0 = case_v0;
+  Pack2d<Search> sim({.time_step = case_time_step,
+                      .gravity = Vec2(0, -9.81),
+                      .contact = pack2d_contact(),
+                      .search = {.skin = 0.1 * d}},
+                     Disk{.thickness = 1e-3});
+  const auto m = sim.add_material(case_material());
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const long n = i + static_cast<long>(nx) * j;
+      const Vec2 v(v0 * (2 * rseq(n, 0.7548776662466927) - 1), v0 * (2 * rseq(n, 0.5698402909980532) - 1));
+      sim.add_particle({.position = Vec2((i + 0.5) * a, (j + 0.5) * a), .radius = r, .material = m,
+                        .velocity = v});
+    }
+  const double lx = nx * a, ly = ny * a, e = d;
+  sim.add_wall(walls::Segment{Vec2(-e, 0), Vec2(lx + e, 0)}, {.name = "bottom", .material = m});
+  sim.add_wall(walls::Segment{Vec2(-e, ly), Vec2(lx + e, ly)}, {.name = "top", .material = m});
+  sim.add_wall(walls::Segment{Vec2(0, -e), Vec2(0, ly + e)}, {.name = "left", .material = m});
+  sim.add_wall(walls::Segment{Vec2(lx, -e), Vec2(lx, ly + e)}, {.name = "right", .material = m});
+  return sim;
+}
+
+// ------------------------------------------------------------------ end-of-run figures
+
+/// The figures the peer inputs print (LIGGGHTS/LAMMPS `compute contact/atom`, `ke`,
+/// `erotate/sphere`, `reduce ave`).
+struct Figures {
+  std::size_t contacts = 0;    ///< particle pairs with |x_i - x_j| <= r_i + r_j
+  double kinetic = 0.0;        ///< sum 1/2 m v^2 [J]
+  double rotational = 0.0;     ///< sum 1/2 (0.4 m r^2) |w|^2 [J], 0.4 also in 2D
+  double mean_height = 0.0;    ///< mean of the last coordinate (z in 3D, y in 2D) [m]
+  std::size_t outside = 0;     ///< particles with a non-finite position or outside `lo`..`hi`
+};
+
+/// End-of-run figures of a simulation; `lo`, `hi` are the corners of the box the particles must
+/// stay in. Contacts are counted over the neighbour list, which holds every touching pair.
+template <class Sim>
+Figures figures(const Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi) {
+  Figures f;
+  const auto& p = sim.particles();
+  const auto& list = sim.neighbor_list();
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (auto e = list.offsets[i]; e < list.offsets[i + 1]; ++e) {
+      const std::size_t j = list.partners[e];
+      const double rs = p.radius[i] + p.radius[j];
+      f.contacts += (p.position[j] - p.position[i]).squaredNorm() <= rs * rs;
+    }
+    f.kinetic += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
+    f.rotational += 0.5 * 0.4 * p.mass[i] * p.radius[i] * p.radius[i] * squared_norm(p.omega[i]);
+    f.mean_height += p.position[i][Sim::D - 1];
+    const auto& x = p.position[i];
+    f.outside += !(x.allFinite() && (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all());
+  }
+  if (n > 0) f.mean_height /= static_cast<double>(n);
+  return f;
 }
 
 } // namespace grain::bench
