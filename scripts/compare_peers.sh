@@ -65,7 +65,7 @@ nx=${size[0]} ny=${size[1]}
 if [ "$dims" = 3 ]; then nz=${size[2]}; else nz=1; fi
 nwarm=${size[$dims]} nrun=${size[$((dims + 1))]}
 n=$((nx * ny * nz))
-[ "$n" -gt 0 ] && [ "$nrun" -gt 0 ] || die "NX, NY, NZ and NRUN must be >= 1"
+if [ "$n" -eq 0 ] || [ "$nrun" -eq 0 ]; then die "NX, NY, NZ and NRUN must be >= 1"; fi
 want() { [[ ,$codes, == *,$1,* ]]; }
 for c in ${codes//,/ }; do
   case $c in grain|liggghts|lammps) ;; *) die "unknown code '$c' in --codes" ;; esac
@@ -186,7 +186,7 @@ load_end=$(load1)
 bit_identical=n/a
 if [ -f "$run_dir/grain-1.out" ] && [ -f "$run_dir/grain-2.out" ]; then
   fig='^(warm_)?(contacts|ke|rke|mean_height) '
-  if [ -n "$(grep -E "$fig" "$run_dir/grain-1.out")" ] &&
+  if grep -qE "$fig" "$run_dir/grain-1.out" &&
      diff <(grep -E "$fig" "$run_dir/grain-1.out") <(grep -E "$fig" "$run_dir/grain-2.out") >/dev/null; then
     bit_identical=yes
   else
@@ -199,7 +199,7 @@ echo "## $case_name, N = $n (${size[*]}: NX NY$([ "$dims" = 3 ] && echo ' NZ') N
 echo
 echo "$(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($cpu), 1-minute load average at the start of each run in the table, $load_end at the end"
 echo
-awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" -v codes="$codes" '
+awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" '
   { code[NR] = $1; p[NR] = $2; rate[NR] = $3; rss[NR] = $5; load[NR] = $6; atoms[NR] = $7
     nc[NR] = $8; ke[NR] = $9; rke[NR] = $10; h[NR] = $11; cpu[NR] = $12
     wnc[NR] = $13; wke[NR] = $14; wrke[NR] = $15; wh[NR] = $16
