@@ -1,7 +1,7 @@
 #pragma once
 /// \file simulation.hpp
 /// `Simulation<Shape, Search, Contact, Integrator>`: particles, walls, materials and the solution
-/// loop, assembled at compile time with no virtual dispatch.
+/// loop, assembled at compile time with no run-time dispatch.
 ///
 /// One step, in this order:
 /// 1. (Verlet only) half kick and drift of particles; walls move;

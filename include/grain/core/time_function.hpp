@@ -20,7 +20,7 @@
 /// explicitly (pass t0 = t_begin for a ramp that starts when the function becomes active), and
 /// tables use absolute time.
 ///
-/// A `TimeFunction` is a small value type (no virtual functions; a table is shared, not copied),
+/// A `TimeFunction` is a small value type (a table is shared, not copied; evaluation is a switch),
 /// cheap to copy and to evaluate, and safe to evaluate from several threads at once. A plain
 /// number converts to a constant: `TimeFunction f = 9.81;`.
 
