@@ -20,6 +20,8 @@
 
 #include <grain/grain.hpp>
 
+#include "example_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -37,20 +39,6 @@ using Sim = Simulation<Disk, search::CellList, Contact, integrate::VelocityVerle
 
 namespace {
 
-/// Deterministic pseudo-random numbers in [0, 1) (splitmix64): the same sequence on every
-/// platform and compiler.
-struct Random {
-  std::uint64_t state;
-  double uniform() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-};
-
 /// Area [m^2] of the part of a disk (centre height yc, radius r) between heights y1 < y2.
 double disk_band_area(double yc, double r, double y1, double y2) {
   const double a = std::max(y1 - yc, -r), b = std::min(y2 - yc, r);
@@ -61,27 +49,13 @@ double disk_band_area(double yc, double r, double y1, double y2) {
   return f(b) - f(a);
 }
 
-void usage() { std::fprintf(stderr, "usage: settle2d [end_time_s > 0] [output_dir]\n"); }
-
 } // namespace
 
 int main(int argc, char** argv) {
   // ------------------------------------------------------------------ command line
   double end_time = 0.4; // [s]
   std::filesystem::path out_dir = "out/settle2d";
-  if (argc > 3) {
-    usage();
-    return 2;
-  }
-  if (argc > 1) {
-    char* rest = nullptr;
-    end_time = std::strtod(argv[1], &rest);
-    if (rest == argv[1] || *rest != '\0' || !(end_time > 0.0) || !std::isfinite(end_time)) {
-      usage();
-      return 2;
-    }
-  }
-  if (argc > 2) out_dir = argv[2];
+  if (!example::parse_arguments(argc, argv, "settle2d", end_time, out_dir)) return 2;
 
   // ------------------------------------------------------------------ set-up
   constexpr int nx = 15, ny = 40;                  // lattice of starting positions: 600 disks
@@ -115,7 +89,7 @@ int main(int argc, char** argv) {
 
   // Disks on a loose lattice, each shifted sideways by up to 0.09 mm so that the columns
   // collapse instead of stacking; radii uniform in [r_min, r_max].
-  Random rng{2024};
+  example::Random rng{2024};
   double solid_area = 0.0; // [m^2]
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {

@@ -16,6 +16,8 @@
 
 #include <grain/grain.hpp>
 
+#include "example_support.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -33,20 +35,6 @@ using Sim = Simulation<Sphere, search::CellList, Contact, integrate::VelocityVer
 
 namespace {
 
-/// Deterministic pseudo-random numbers in [0, 1) (splitmix64): the same sequence on every
-/// platform and compiler.
-struct Random {
-  std::uint64_t state;
-  double uniform() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-};
-
 /// Volume [m^3] of the part of a sphere (centre height zc, radius r) between heights z1 < z2.
 double sphere_slab_volume(double zc, double r, double z1, double z2) {
   const double a = std::max(z1 - zc, -r), b = std::min(z2 - zc, r);
@@ -55,27 +43,13 @@ double sphere_slab_volume(double zc, double r, double z1, double z2) {
   return std::numbers::pi * (f(b) - f(a));
 }
 
-void usage() { std::fprintf(stderr, "usage: settle3d [end_time_s > 0] [output_dir]\n"); }
-
 } // namespace
 
 int main(int argc, char** argv) {
   // ------------------------------------------------------------------ command line
   double end_time = 0.3; // [s]
   std::filesystem::path out_dir = "out/settle3d";
-  if (argc > 3) {
-    usage();
-    return 2;
-  }
-  if (argc > 1) {
-    char* rest = nullptr;
-    end_time = std::strtod(argv[1], &rest);
-    if (rest == argv[1] || *rest != '\0' || !(end_time > 0.0) || !std::isfinite(end_time)) {
-      usage();
-      return 2;
-    }
-  }
-  if (argc > 2) out_dir = argv[2];
+  if (!example::parse_arguments(argc, argv, "settle3d", end_time, out_dir)) return 2;
 
   // ------------------------------------------------------------------ set-up
   constexpr int nx = 12, ny = 12, nz = 21;         // lattice of starting positions: 3024 spheres
@@ -111,7 +85,7 @@ int main(int argc, char** argv) {
 
   // Spheres on a loose lattice, each shifted sideways by up to 0.09 mm so that the columns
   // collapse instead of stacking; radii uniform in [r_min, r_max].
-  Random rng{2024};
+  example::Random rng{2024};
   double solid_volume = 0.0; // [m^3]
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)

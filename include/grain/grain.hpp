@@ -6,7 +6,8 @@
 /// disks and 3D spheres. Models are types, coefficients are values:
 ///
 /// \code
-/// using Contact = grain::Interaction<grain::normal::Hertz<>, grain::tangent::SpringDashpotSlider>;
+/// using Contact = grain::Interaction<grain::normal::Hertz<>, grain::tangent::SpringDashpotSlider,
+///                                    grain::rolling::None, grain::conduction::BatchelorOBrien>;
 /// grain::Simulation<grain::Sphere, grain::search::CellList, Contact> sim;
 /// \endcode
 
@@ -43,8 +44,21 @@
 #include <grain/models/rolling/epsd.hpp>
 #include <grain/models/rolling/none.hpp>
 #include <grain/models/rolling/viscous.hpp>
+#include <grain/models/conduction/batchelor_obrien.hpp>
+#include <grain/models/conduction/collisional.hpp>
+#include <grain/models/conduction/combined.hpp>
 #include <grain/models/conduction/none.hpp>
+#include <grain/models/conduction/surrounding_layer.hpp>
+#include <grain/models/conduction/thermal_pipe.hpp>
+#include <grain/models/conduction/voronoi_a.hpp>
+#include <grain/models/conduction/voronoi_b.hpp>
+#include <grain/models/area/lu_morris_li_benyahia.hpp>
+#include <grain/models/area/morris_pannala_ma_hrenya.hpp>
 #include <grain/models/area/none.hpp>
+#include <grain/models/area/zhou_yu_zulli.hpp>
+#include <grain/models/convection/none.hpp>
+#include <grain/models/convection/ranz_marshall.hpp>
+#include <grain/models/convection/whitaker.hpp>
 #include <grain/interaction.hpp>
 #include <grain/presets.hpp>
 #include <grain/integrate/integrators.hpp>

@@ -6,9 +6,12 @@
 /// Pipeline of one contact (the only place where the order lives):
 /// 1. normal force  -> NormalResult {force, stiffness, damping};
 /// 2. tangential force, given the normal result (Coulomb limit, default stiffness and damping);
-/// 3. torques: the tangential force about each centre (arm x F), then the rolling model.
-/// The conduction and area-correction slots are filled by the thermal layer; with their `None`
-/// defaults they add nothing to the pipeline.
+/// 3. torques: the tangential force about each centre (arm x F), then the rolling model;
+/// 4. (thermal simulations, `conductance`) the area correction turns the geometry and the normal
+///    result into the contact radius a, the centre distance is made consistent with a, and the
+///    conduction model returns the conductance H [W/K]; the heat rate into i is H (T_j - T_i).
+///    Pairs that do not touch reach only `gap_conductance` (models that conduct across gaps).
+/// With `conduction::None` (the default) the simulation is purely mechanical.
 ///
 /// The per-contact history is composed of the non-empty histories of the models in use only; for
 /// models without history it costs zero bytes, and it is trivially copyable (a checkpoint or a
@@ -19,6 +22,8 @@
 #include <grain/models/conduction/none.hpp>
 #include <grain/models/rolling/none.hpp>
 #include <grain/models/tangent/none.hpp>
+#include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 namespace grain {
@@ -45,6 +50,12 @@ struct InvalidModel {
   static TangentResult<D> force(const ContactGeometry<D>&, const PairProperties&,
                                 const NormalResult&, const Params&, History<D>&, double) {
     return {};
+  }
+  static constexpr bool thermal = false;
+  template <int D>
+  static double radius(const ContactGeometry<D>&, const PairProperties&, const NormalResult&,
+                       const Params&) {
+    return 0;
   }
   template <int D, class A>
   static void torque(const ContactGeometry<D>&, const PairProperties&, const NormalResult&,
@@ -93,6 +104,13 @@ struct Interaction {
   /// True if a model produces torques (then particles carry and integrate rotation).
   static constexpr bool has_torque = !std::is_same_v<tangent_model, tangent::None> ||
                                      !std::is_same_v<rolling_model, rolling::None>;
+
+  /// True if the conduction model transfers heat (particles then carry temperatures).
+  static constexpr bool thermal = conduction_model::thermal;
+  /// True if heat also flows across gaps (the search then reaches `cutoff` beyond contact).
+  static constexpr bool indirect = thermal && conducts_across_gaps<conduction_model>;
+  /// True if the conduction model needs the fluid-cell radius of each pair.
+  static constexpr bool needs_cell_radius = thermal && uses_cell_radius<conduction_model>;
 
   /// Coefficients of every model in use.
   struct Params {
@@ -150,6 +168,70 @@ struct Interaction {
       rolling_model::torque(g, pair, r.normal, p.rolling, h.rolling, dt, r.torque_i, r.torque_j);
     }
     return r;
+  }
+
+  /// Conductance H [W/K] of a touching pair whose normal force is `n` (step 4 of the pipeline).
+  /// `length` is the cylinder length of 2D disks (0 for spheres), `cell_radius` the fluid-cell
+  /// radius (infinite when unused).
+  template <int D>
+  static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
+                            const NormalResult& n, const Params& p, History<D>& h, double dt,
+                            double length, double cell_radius) {
+    if constexpr (thermal) {
+      const double a = area_model::radius(g, pair, n, p.area);
+      const HeatContext c{.contact_radius = a,
+                          .distance = consistent_distance(g, a),
+                          .gap = 0.0,
+                          .cell_radius = cell_radius,
+                          .length = length,
+                          .time_step = dt,
+                          .touching = true};
+      return conduction_model::conductance(g, pair, c, p.conduction, h.conduction);
+    } else {
+      return 0.0;
+    }
+  }
+
+  /// Conductance H [W/K] of a pair separated by a gap (models that conduct across gaps only).
+  template <int D>
+  static double gap_conductance(const ContactGeometry<D>& g, const PairProperties& pair,
+                                const Params& p, History<D>& h, double dt, double length,
+                                double cell_radius) {
+    if constexpr (indirect) {
+      const HeatContext c{.contact_radius = 0.0,
+                          .distance = g.distance,
+                          .gap = -g.overlap,
+                          .cell_radius = cell_radius,
+                          .length = length,
+                          .time_step = dt,
+                          .touching = false};
+      return conduction_model::conductance(g, pair, c, p.conduction, h.conduction);
+    } else {
+      return 0.0;
+    }
+  }
+
+  /// Largest gap [m] across which heat flows (0 unless the conduction model is indirect).
+  static double cutoff(const Params& p, double r_max) {
+    if constexpr (indirect)
+      return conduction_model::cutoff(p.conduction, r_max);
+    else
+      return 0.0;
+  }
+
+  /// Centre distance (pair) or centre-to-surface distance (flat wall) at which the undeformed
+  /// bodies intersect in a lens of radius a [m].
+  template <int D>
+  static double consistent_distance(const ContactGeometry<D>& g, double a) {
+    const double a2 = a * a;
+    const double di = std::sqrt(std::max(g.radius_i * g.radius_i - a2, 0.0));
+    if (g.wall) {
+      if (std::isinf(g.radius_j)) return di;
+      const double rw = std::abs(g.radius_j);
+      const double dj = std::sqrt(std::max(rw * rw - a2, 0.0));
+      return g.radius_j > 0 ? di + dj - rw : rw - dj + di; // centre-to-surface distance
+    }
+    return di + std::sqrt(std::max(g.radius_j * g.radius_j - a2, 0.0));
   }
 
   /// Mirrors the history of a pair whose partners swap roles.

@@ -1,15 +1,23 @@
 #pragma once
 /// \file simulation.hpp
-/// `Simulation<Shape, Search, Contact, Integrator>`: particles, walls, materials and the solution
-/// loop, assembled at compile time with no run-time dispatch.
+/// `Simulation<Shape, Search, Contact, Options...>`: particles, walls, materials and the solution
+/// loop, assembled at compile time with no run-time dispatch. `Options` are optional, in any
+/// order: an integrator from grain::integrate (default velocity Verlet) and a convection model
+/// from grain::convection (default none).
 ///
 /// One step, in this order:
 /// 1. (Verlet only) half kick and drift of particles; walls move;
 /// 2. neighbour search: the candidate list is rebuilt if the search says so (never late);
-/// 3. per-contact pipeline for particle pairs and particle-wall pairs (forces, torques);
-/// 4. global conditions: gravity, translational and rotational damping;
+/// 3. per-contact pipeline for particle pairs and particle-wall pairs (forces, torques and, in a
+///    thermal simulation, conductances and heat rates);
+/// 4. global conditions: gravity, translational and rotational damping; convection;
 /// 5. integration (Euler family: particles advance, then walls move; Verlet: second half kick);
-/// 6. time advances.
+///    temperatures advance by forward Euler, T += dt Q / (m c);
+/// 6. time advances; wall temperatures follow their time functions.
+///
+/// Analyses (`SimulationParams::analysis`): mechanical (no heat), thermo-mechanical (both, every
+/// step; the default when the contact has a conduction model) and thermal (particles never move:
+/// contacts and conductances are computed once and reused, only temperatures advance).
 ///
 /// Force accumulation is race-free and deterministic: rows of the half list are cut into chunks
 /// whose length depends only on N and on the largest index distance of a pair, never on the
@@ -20,10 +28,12 @@
 #include <grain/core/vector.hpp>
 #include <grain/integrate/integrators.hpp>
 #include <grain/interaction.hpp>
+#include <grain/models/convection/none.hpp>
 #include <grain/particles/material.hpp>
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/search.hpp>
+#include <grain/thermal/cells.hpp>
 #include <grain/walls/walls.hpp>
 
 #include <algorithm>
@@ -31,7 +41,9 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #ifdef _OPENMP
@@ -48,12 +60,49 @@ struct ParticleSpec {
   std::uint32_t material = 0;            ///< index returned by add_material
   Vec<D> velocity = Vec<D>::Zero();      ///< [m/s]
   Angular<D> omega = zero<Angular<D>>(); ///< angular velocity [rad/s]
+  /// Initial temperature [K] (thermal simulations only); NaN = SimulationParams::initial_temperature.
+  double temperature = std::numeric_limits<double>::quiet_NaN();
   bool fixed = false; ///< if true the particle keeps its velocities (forces do not move it)
   std::int64_t id = -1; ///< -1 = next free id
 };
 
+/// What a simulation advances.
+enum class Analysis {
+  automatic,         ///< thermo-mechanical if the contact has a conduction model, else mechanical
+  mechanical,        ///< motion only; temperatures (if any) stay constant
+  thermal,           ///< temperatures only; particles never move, conductances computed once
+  thermo_mechanical, ///< motion and temperatures every step
+};
+
+namespace detail {
+template <class T>
+concept integrator_option = integrate::Integrator<T>;
+template <class T>
+concept convection_option = ConvectionModel<T>;
+
+/// The first of Ts satisfying the predicate P, or Default.
+template <template <class> class P, class Default, class... Ts>
+struct pick {
+  using type = Default;
+};
+template <template <class> class P, class Default, class T, class... Ts>
+struct pick<P, Default, T, Ts...> {
+  using type = std::conditional_t<P<T>::value, T, typename pick<P, Default, Ts...>::type>;
+};
+template <class T>
+struct is_integrator : std::bool_constant<integrator_option<T>> {};
+template <class T>
+struct is_convection : std::bool_constant<convection_option<T>> {};
+template <class T>
+struct is_cell_method : std::bool_constant<cells::CellSizeMethod<T>> {};
+template <class T>
+struct is_option
+    : std::bool_constant<integrator_option<T> || convection_option<T> || cells::CellSizeMethod<T>> {};
+} // namespace detail
+
 /// Global settings of a simulation.
-template <int D, class Contact, class SearchT>
+template <int D, class Contact, class SearchT, class Convection = convection::None,
+          class CellSize = cells::GlobalPorosity>
 struct SimulationParams {
   double time_step = 0.0; ///< [s]; 0 = automatic (auto_time_step_factor x critical step)
   double auto_time_step_factor = 0.1;
@@ -65,6 +114,20 @@ struct SimulationParams {
   double damping_rotational = 0.0;         ///< global damping torque -c w, c in [N m s]
   typename Contact::Params contact{};      ///< coefficients of the contact models
   typename SearchT::Params search{};       ///< neighbour-search settings
+
+  // thermal settings (used when the contact has a conduction model)
+  Analysis analysis = Analysis::automatic;
+  double initial_temperature = 293.15;     ///< default particle temperature [K]
+  /// Surrounding / interstitial fluid (convection, conduction through the fluid).
+  Fluid<D> fluid{};
+  typename Convection::Params convection{}; ///< coefficients of the convection model
+  /// Fraction in [0, 1] of the power dissipated at contacts (viscous normal damping eta
+  /// (d delta/dt)^2 and sliding friction -F_t . v_t) that heats the two partners, half each (a
+  /// wall's half leaves the system). 0 (default): dissipation makes no heat. Hysteresis of
+  /// plastic normal models, sticking tangential dashpots and rolling resistance are not counted.
+  double dissipation_heating = 0.0;
+  /// Settings of the fluid-cell size method (Voronoi conduction models only).
+  typename CellSize::Params cells{};
 };
 
 /// Summary counters of a run (for the console summary and benchmarks).
@@ -75,17 +138,42 @@ struct RunCounters {
   double particle_steps = 0.0;
 };
 
-template <class Shape, class SearchT, class Contact, class IntegratorT = integrate::VelocityVerlet>
+template <class Shape, class SearchT, class Contact, class... Options>
 class Simulation {
+  static_assert((detail::is_option<Options>::value && ...),
+                "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
+                "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
+                "convection model from grain::convection (e.g. convection::RanzMarshall) or a "
+                "cell-size method from grain::cells (e.g. cells::LocalPorosity)");
+  static_assert((0 + ... + int(detail::is_integrator<Options>::value)) <= 1 &&
+                    (0 + ... + int(detail::is_convection<Options>::value)) <= 1 &&
+                    (0 + ... + int(detail::is_cell_method<Options>::value)) <= 1,
+                "grain::Simulation: give at most one integrator, one convection model and one "
+                "cell-size method");
+  static_assert((0 + ... + int(detail::is_cell_method<Options>::value)) == 0 ||
+                    Contact::needs_cell_radius,
+                "grain::Simulation: a cell-size method is used only by the Voronoi conduction "
+                "models (conduction::VoronoiA, conduction::VoronoiB); remove it or use one of "
+                "them");
+
+public:
+  using IntegratorT = typename detail::pick<detail::is_integrator, integrate::VelocityVerlet,
+                                            Options...>::type;
+  using ConvectionT =
+      typename detail::pick<detail::is_convection, convection::None, Options...>::type;
+  using CellSizeT =
+      typename detail::pick<detail::is_cell_method, cells::GlobalPorosity, Options...>::type;
+
+private:
   static_assert(ParticleShape<Shape>,
                 "grain::Simulation: the 1st argument must be a particle shape, grain::Disk (2D) "
                 "or grain::Sphere (3D)");
   static_assert(search::Search<SearchT>,
                 "grain::Simulation: the 2nd argument must be a neighbour search, "
                 "search::AllPairs, search::VerletList or search::CellList");
-  static_assert(integrate::Integrator<IntegratorT>,
-                "grain::Simulation: the 4th argument must be an integrator from grain::integrate, "
-                "e.g. integrate::VelocityVerlet");
+  static_assert(ConvectionT::active == false || Contact::thermal,
+                "grain::Simulation: a convection model needs a thermal contact: give the "
+                "Interaction a conduction model such as conduction::BatchelorOBrien");
 
 public:
   static constexpr int dimension = Shape::dimension;
@@ -94,7 +182,12 @@ public:
   using search_type = SearchT;
   using contact_type = Contact;
   using integrator_type = IntegratorT;
-  using Params = SimulationParams<D, Contact, SearchT>;
+  using convection_type = ConvectionT;
+  /// True if particles carry temperatures (the contact has a conduction model).
+  static constexpr bool thermal = Contact::thermal;
+  using Params = SimulationParams<D, Contact, SearchT, ConvectionT, CellSizeT>;
+  /// Particle storage: mechanical fields, plus the thermal state in a thermal simulation.
+  using Particles = std::conditional_t<thermal, ThermalParticleArrays<D>, ParticleArrays<D>>;
   using History = typename Contact::template History<D>;
   using V = Vec<D>;
   using A = Angular<D>;
@@ -113,6 +206,26 @@ public:
     detail::require_in("Simulation", "auto_time_step_factor", params_.auto_time_step_factor, 1e-6,
                        1.0, "(0, 1]");
     detail::require_positive("Simulation", "reference_velocity", params_.reference_velocity);
+    if (params_.analysis == Analysis::thermal || params_.analysis == Analysis::thermo_mechanical)
+      if (!thermal)
+        throw InputError("Simulation: analysis = thermal or thermo-mechanical needs a contact "
+                         "with a conduction model; valid for this contact: mechanical or automatic "
+                         "(give the Interaction a conduction model such as "
+                         "conduction::BatchelorOBrien)");
+    detail::require(std::isfinite(params_.initial_temperature) && params_.initial_temperature >= 0,
+                    "Simulation", "initial_temperature", params_.initial_temperature, "[0, inf) K");
+    params_.fluid.validate();
+    detail::require_in("Simulation", "dissipation_heating", params_.dissipation_heating, 0.0, 1.0,
+                       "[0, 1]");
+    ConvectionT::validate(params_.convection);
+    CellSizeT::validate(params_.cells);
+    if constexpr (ConvectionT::active) {
+      detail::require_positive("Fluid (convection)", "viscosity", params_.fluid.viscosity);
+      detail::require_positive("Fluid (convection)", "density", params_.fluid.density);
+      detail::require_positive("Fluid (convection)", "conductivity", params_.fluid.conductivity);
+      detail::require_positive("Fluid (convection)", "heat_capacity", params_.fluid.heat_capacity);
+    }
+    update_pairs();
   }
 
   // ---------------------------------------------------------------- set-up
@@ -166,6 +279,20 @@ public:
     p.inertia.push_back(inertia);
     p.inv_inertia.push_back(s.fixed ? 0.0 : 1.0 / inertia);
     p.material.push_back(s.material);
+    if constexpr (thermal) {
+      const double t = std::isnan(s.temperature) ? params_.initial_temperature : s.temperature;
+      detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
+      const double c = mass * m.heat_capacity;
+      p.temperature.push_back(t);
+      p.heat_rate.push_back(0.0);
+      p.heat_capacity.push_back(c);
+      p.inv_heat_capacity.push_back(c > 0 ? 1.0 / c : 0.0);
+    } else {
+      if (!std::isnan(s.temperature))
+        throw InputError(obj + ": temperature = " + detail::to_text(s.temperature) +
+                         " K is given but the contact has no conduction model; valid: leave it "
+                         "unset, or give the Interaction a conduction model");
+    }
     initialized_ = false;
     return id;
   }
@@ -244,8 +371,63 @@ public:
     return t;
   }
 
-  /// The critical time step: min(Rayleigh time, contact limit) [s].
-  double critical_time_step() const { return std::min(rayleigh_time(), contact_time_step()); }
+  /// Mechanical critical time step: min(Rayleigh time, contact limit) [s].
+  double mechanical_time_step() const { return std::min(rayleigh_time(), contact_time_step()); }
+
+  /// Thermal time scale of the particles, min R^2 rho c / k [s] (infinite without conduction):
+  /// the time heat takes to diffuse across a particle. The automatic time step stays below
+  /// `auto_time_step_factor` times it.
+  double thermal_time_step() const {
+    double t = std::numeric_limits<double>::infinity();
+    if constexpr (thermal) {
+      for (std::size_t i = 0; i < particles_.size(); ++i) {
+        const Material& m = materials_[particles_.material[i]];
+        if (m.conductivity > 0)
+          t = std::min(t, particles_.radius[i] * particles_.radius[i] * m.density *
+                              m.heat_capacity / m.conductivity);
+      }
+    }
+    return t;
+  }
+
+  /// Stability limit of the explicit temperature update over the contacts of the current
+  /// neighbour list (after initialisation): min over particles of C_i / sum_j H_ij [s].
+  /// Forward Euler is stable for dt < 2/lambda_max, lambda_max the largest eigenvalue of
+  /// C^-1 L (L the conductance Laplacian); by Gershgorin's theorem lambda_max <= max_i
+  /// 2 sum_j H_ij / C_i, so this bound is sufficient, and it is exact for two particles.
+  double conduction_time_step() const {
+    double t = std::numeric_limits<double>::infinity();
+    if constexpr (thermal) {
+      if (list_.rows() != particles_.size()) return t;
+      std::vector<double> h(particles_.size(), 0.0);
+      for_each_conductance([&](std::size_t i, std::size_t j, bool wall, double H) {
+        h[i] += H;
+        if (!wall) h[j] += H;
+      });
+      for (std::size_t i = 0; i < h.size(); ++i)
+        if (h[i] > 0) t = std::min(t, particles_.heat_capacity[i] / h[i]);
+    }
+    return t;
+  }
+
+  /// The critical time step [s]: the mechanical one if particles move, and the conduction limit
+  /// if temperatures advance.
+  double critical_time_step() const {
+    double t = std::numeric_limits<double>::infinity();
+    if (moves()) t = mechanical_time_step();
+    if (heats()) t = std::min(t, conduction_time_step());
+    return t;
+  }
+
+  /// The analysis in use (`automatic` resolved).
+  Analysis analysis() const {
+    if (params_.analysis != Analysis::automatic) return params_.analysis;
+    return thermal ? Analysis::thermo_mechanical : Analysis::mechanical;
+  }
+  /// True if particles move (every analysis but thermal).
+  bool moves() const { return analysis() != Analysis::thermal; }
+  /// True if temperatures advance (thermal and thermo-mechanical analyses).
+  bool heats() const { return thermal && analysis() != Analysis::mechanical; }
 
   /// The time step in use [s] (after initialisation).
   double time_step() const { return dt_; }
@@ -256,32 +438,61 @@ public:
   void initialize() {
     if (materials_.empty() && (particles_.size() > 0 || !walls_.empty()))
       throw InputError("Simulation: no material was added; add_material() first");
-    const double critical = critical_time_step();
-    if (params_.time_step > 0.0) {
-      if (params_.time_step > critical)
-        throw InputError("Simulation: time_step = " + detail::to_text(params_.time_step) +
-                         " s is above the stable limit; valid range: (0, " +
-                         detail::to_text(critical) + "] s (Rayleigh time " +
-                         detail::to_text(rayleigh_time()) + " s, contact limit 2 sqrt(m*/k) = " +
-                         detail::to_text(contact_time_step()) + " s)");
-      dt_ = params_.time_step;
-    } else {
-      if (!std::isfinite(critical))
-        throw InputError("Simulation: time_step = 0 (automatic) needs particles to estimate it; "
-                         "valid range: (0, inf) s");
-      dt_ = params_.auto_time_step_factor * critical;
+    if constexpr (thermal) {
+      if (heats()) {
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+          const Material& m = materials_[particles_.material[i]];
+          if (!(m.heat_capacity > 0))
+            throw InputError("Material '" + m.name + "': heat_capacity = " +
+                             detail::to_text(m.heat_capacity) +
+                             " J/(kg K) is invalid for a particle of a thermal simulation; valid "
+                             "range: (0, inf) J/(kg K)");
+        }
+      }
     }
     r_max_ = 0.0;
     for (double r : particles_.radius) r_max_ = std::max(r_max_, r);
-    skin_ = SearchT::skin(params_.search, r_max_);
+    skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
+    heat_on_ = heats();
+    cutoff_ = heats() ? Contact::cutoff(params_.contact, r_max_) : 0.0;
+    for (auto& w : walls_) w.update_temperature(time_);
     rebuild();
-    if constexpr (IntegratorT::drift_before_forces) {
-      // forces at the initial positions; histories are not advanced by this evaluation
-      auto saved = history_;
-      auto saved_w = wall_history_;
-      compute_forces();
-      history_ = saved;
-      wall_history_ = saved_w;
+    const double critical = critical_time_step();
+    if (params_.time_step > 0.0) {
+      if (params_.time_step > critical) {
+        std::string why;
+        if (moves())
+          why += "Rayleigh time " + detail::to_text(rayleigh_time()) +
+                 " s, contact limit 2 sqrt(m*/k) = " + detail::to_text(contact_time_step()) + " s";
+        if (heats())
+          why += std::string(why.empty() ? "" : ", ") + "conduction limit min C_i / sum H_ij = " +
+                 detail::to_text(conduction_time_step()) + " s";
+        throw InputError("Simulation: time_step = " + detail::to_text(params_.time_step) +
+                         " s is above the stable limit; valid range: (0, " +
+                         detail::to_text(critical) + "] s (" + why + ")");
+      }
+      dt_ = params_.time_step;
+    } else {
+      double t = critical;
+      if (heats()) t = std::min(t, thermal_time_step());
+      if (!std::isfinite(t))
+        throw InputError("Simulation: time_step = 0 (automatic) needs particles (and, in a "
+                         "thermal analysis, conducting contacts) to estimate it; valid range: "
+                         "(0, inf) s");
+      dt_ = params_.auto_time_step_factor * t;
+    }
+    if constexpr (thermal) {
+      if (analysis() == Analysis::thermal) store_conductances();
+    }
+    if (moves()) {
+      if constexpr (IntegratorT::drift_before_forces) {
+        // forces at the initial positions; histories are not advanced by this evaluation
+        auto saved = history_;
+        auto saved_w = wall_history_;
+        compute_forces();
+        history_ = saved;
+        wall_history_ = saved_w;
+      }
     }
     initialized_ = true;
   }
@@ -291,16 +502,26 @@ public:
     if (!initialized_) initialize();
     const auto t0 = std::chrono::steady_clock::now();
     const double dt = dt_;
-    if constexpr (IntegratorT::drift_before_forces) {
-      integrate_before(dt);
-      move_walls(dt);
+    if (moves()) {
+      if constexpr (IntegratorT::drift_before_forces) {
+        integrate_before(dt);
+        move_walls(dt);
+      }
+      update_neighbors();
+      if (heat_on_) maybe_update_cells();
+      compute_forces();
+      integrate_after(dt);
+      if constexpr (!IntegratorT::drift_before_forces) move_walls(dt);
+    } else {
+      if constexpr (thermal) static_heat_rates();
     }
-    update_neighbors();
-    compute_forces();
-    integrate_after(dt);
-    if constexpr (!IntegratorT::drift_before_forces) move_walls(dt);
+    if constexpr (thermal) {
+      if (heats()) integrate_temperature(dt);
+    }
     ++step_;
     time_ = static_cast<double>(step_) * dt_ + time_offset_;
+    if constexpr (thermal)
+      for (auto& w : walls_) w.update_temperature(time_);
     counters_.steps += 1;
     counters_.particle_steps += static_cast<double>(particles_.size());
     counters_.wall_seconds +=
@@ -330,8 +551,8 @@ public:
   }
 
   // ---------------------------------------------------------------- read access
-  const ParticleArrays<D>& particles() const { return particles_; }
-  ParticleArrays<D>& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  Particles& particles() { return particles_; }
   const std::vector<Wall<D>>& walls() const { return walls_; }
   std::vector<Wall<D>>& walls() { return walls_; }
   const std::vector<Material>& materials() const { return materials_; }
@@ -385,6 +606,49 @@ public:
     }
   }
 
+  /// Visits the conductance of every conducting pair of the current list without changing any
+  /// state: f(i, j_or_wall, is_wall, H).
+  template <class F>
+  void for_each_conductance(F&& f) const {
+    if constexpr (thermal) {
+      const auto& p = particles_;
+      ContactGeometry<D> g;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+          const auto j = list_.partners[e];
+          double H = 0.0;
+          if (touching_pair(i, j, g)) {
+            const auto& pair = pair_properties(p.material[i], p.material[j]);
+            History h = history_at(history_, e);
+            auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
+            H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_, length(),
+                                     cell_radius_pair(e));
+          } else if constexpr (Contact::indirect) {
+            H = gap_pair_conductance(i, j, e, g);
+          }
+          if (H != 0.0) f(i, static_cast<std::size_t>(j), false, H);
+        }
+        for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+          const auto w = list_.walls[e];
+          if (!walls_[w].conducts()) continue;
+          double H = 0.0;
+          if (touching_wall(i, w, g)) {
+            const auto& pair = pair_properties(p.material[i], walls_[w].options.material);
+            History h = history_at(wall_history_, e);
+            auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
+            H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_, length(),
+                                     cell_radius_wall(e));
+          } else if constexpr (Contact::indirect) {
+            H = gap_wall_conductance(i, w, e, g);
+          }
+          if (H != 0.0) f(i, static_cast<std::size_t>(w), true, H);
+        }
+      }
+    } else {
+      (void)f;
+    }
+  }
+
   /// Number of touching particle-particle and particle-wall contacts.
   std::pair<std::size_t, std::size_t> contact_counts() const {
     std::size_t pp = 0, pw = 0;
@@ -422,6 +686,27 @@ public:
     return e;
   }
 
+  /// Heat content sum C_i T_i of the particles [J] (0 without a thermal state); constant in an
+  /// insulated system.
+  double thermal_energy() const {
+    double e = 0.0;
+    if constexpr (thermal)
+      for (std::size_t i = 0; i < particles_.size(); ++i)
+        e += particles_.heat_capacity[i] * particles_.temperature[i];
+    return e;
+  }
+  /// Mean particle temperature [K] (NaN without particles or thermal state).
+  double mean_temperature() const {
+    double t = 0.0;
+    if constexpr (thermal) {
+      if (particles_.size() == 0) return std::numeric_limits<double>::quiet_NaN();
+      for (double x : particles_.temperature) t += x;
+      return t / static_cast<double>(particles_.size());
+    } else {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+
 private:
   void update_pairs() {
     const auto nm = materials_.size();
@@ -430,6 +715,7 @@ private:
       for (std::size_t b = 0; b < nm; ++b)
         pairs_[a * nm + b] =
             PairProperties::mix(materials_[a], materials_[b], overrides_[a * nm + b]);
+    for (auto& pp : pairs_) pp.fluid_conductivity = params_.fluid.conductivity;
   }
   static std::string to_text(const V& v) {
     std::string s = "(";
@@ -516,7 +802,7 @@ private:
     NeighborList old = std::move(list_);
     std::vector<History> old_hist = std::move(history_), old_whist = std::move(wall_history_);
     std::vector<std::uint32_t> perm;
-    const double reach = skin_;
+    const double reach = skin_ + cutoff_;
     if constexpr (SearchT::sorts) {
       if (params_.search.sort && n > 1) {
         perm = search::detail::cell_order(p, 2.0 * r_max_ + reach);
@@ -569,6 +855,7 @@ private:
     for (auto& w : walls_) w.take_snapshot();
     steps_since_rebuild_ = 0;
     ++counters_.rebuilds;
+    if (heat_on_) update_cells();
   }
 
   // ---------------------------------------------------------------- forces
@@ -595,6 +882,7 @@ private:
       }
       p.force[i] = V::Zero();
       p.torque[i] = zero<A>();
+      if constexpr (thermal) p.heat_rate[i] = 0.0;
     }
     // deterministic chunks: the chunk length depends on N and the list span only
     const long span = static_cast<long>(list_.max_span);
@@ -614,6 +902,7 @@ private:
       p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
       if constexpr (Contact::has_torque) p.torque[i] -= cr * force_omega()[i];
     }
+    if (heat_on_) add_convection();
   }
 
   const std::vector<V>& force_velocity() const {
@@ -631,35 +920,197 @@ private:
     const double dt = dt_;
     const auto& vf = force_velocity();
     const auto& wf = force_omega();
+    [[maybe_unused]] const bool heat = heat_on_;
     for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
       const auto j = list_.partners[e];
       if (!touching_pair(i, j, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) history_[e] = History{};
+        if constexpr (Contact::indirect) {
+          if (heat) {
+            const double H = gap_pair_conductance(i, j, e, g);
+            const double q = H * (p.temperature[j] - p.temperature[i]);
+            p.heat_rate[i] += q;
+            p.heat_rate[j] -= q;
+          }
+        }
         continue;
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
       const auto& pair = pairs_[p.material[i] * materials_.size() + p.material[j]];
-      auto r = Contact::evaluate(g, pair, params_.contact, hist(history_, e), dt);
+      History& h = hist(history_, e);
+      auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
       p.force[i] += r.force;
       p.force[j] -= r.force;
       if constexpr (Contact::has_torque) {
         p.torque[i] += r.torque_i;
         p.torque[j] += r.torque_j;
       }
+      if constexpr (thermal) {
+        if (heat) {
+          const double H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt,
+                                                length(), cell_radius_pair(e));
+          const double q = H * (p.temperature[j] - p.temperature[i]);
+          const double w = dissipation_heat(g, r);
+          p.heat_rate[i] += q + w;
+          p.heat_rate[j] += w - q;
+        }
+      }
     }
     for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
       const auto w = list_.walls[e];
       if (!touching_wall(i, w, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) wall_history_[e] = History{};
+        if constexpr (Contact::indirect) {
+          if (heat && walls_[w].conducts())
+            p.heat_rate[i] +=
+                gap_wall_conductance(i, w, e, g) * (walls_[w].temperature - p.temperature[i]);
+        }
         continue;
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
       const auto& pair = pairs_[p.material[i] * materials_.size() + walls_[w].options.material];
-      auto r = Contact::evaluate(g, pair, params_.contact, hist(wall_history_, e), dt);
+      History& h = hist(wall_history_, e);
+      auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
       p.force[i] += r.force;
       if constexpr (Contact::has_torque) p.torque[i] += r.torque_i;
+      if constexpr (thermal) {
+        if (heat) {
+          if (walls_[w].conducts()) {
+            const double H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt,
+                                                  length(), cell_radius_wall(e));
+            p.heat_rate[i] += H * (walls_[w].temperature - p.temperature[i]);
+          }
+          p.heat_rate[i] += dissipation_heat(g, r);
+        }
+      }
+    }
+  }
+
+  // ---------------------------------------------------------------- heat
+  /// Fluid-cell radii of the list entries (Voronoi conduction models only).
+  void update_cells() {
+    if constexpr (Contact::needs_cell_radius) {
+      const auto& p = particles_;
+      auto r = CellSizeT::template compute<D>(
+          params_.cells, std::span<const V>(p.position.data(), p.size()),
+          std::span<const double>(p.radius.data(), p.size()), list_, walls_);
+      cell_pair_ = std::move(r.pair);
+      cell_wall_ = std::move(r.wall);
+      steps_since_cells_ = 0;
+    }
+  }
+  void maybe_update_cells() {
+    if constexpr (Contact::needs_cell_radius) {
+      const long f = params_.cells.update_frequency;
+      if (f > 0 && ++steps_since_cells_ >= f) update_cells();
+    }
+  }
+
+  /// Heat rate [W] into each partner from the power dissipated at a contact (see
+  /// SimulationParams::dissipation_heating).
+  template <class R>
+  double dissipation_heat(const ContactGeometry<D>& g, const R& r) const {
+    const double f = params_.dissipation_heating;
+    if (f == 0.0) return 0.0;
+    double power = r.normal.damping * g.normal_velocity * g.normal_velocity;
+    if (r.tangent.sliding) power -= r.tangent.force.dot(g.tangential_velocity);
+    return 0.5 * f * std::max(power, 0.0);
+  }
+
+  /// Cylinder length of 2D disks for the conduction models (0 for spheres and sphere-mass disks).
+  double length() const {
+    if constexpr (requires { shape_.thickness; shape_.sphere_mass; })
+      return shape_.sphere_mass ? 0.0 : shape_.thickness;
+    else
+      return 0.0;
+  }
+  double cell_radius_pair(std::size_t e) const {
+    if constexpr (Contact::needs_cell_radius) return cell_pair_[e];
+    else { (void)e; return std::numeric_limits<double>::infinity(); }
+  }
+  double cell_radius_wall(std::size_t e) const {
+    if constexpr (Contact::needs_cell_radius) return cell_wall_[e];
+    else { (void)e; return std::numeric_limits<double>::infinity(); }
+  }
+  /// Conductance across the gap of a pair that does not touch (0 beyond the cutoff).
+  double gap_pair_conductance(std::size_t i, std::size_t j, std::size_t e,
+                              ContactGeometry<D>& g) const {
+    const auto& p = particles_;
+    const V d = p.position[j] - p.position[i];
+    const double dist = d.norm();
+    const double gap = dist - p.radius[i] - p.radius[j];
+    if (!(gap < cutoff_) || dist <= 0) return 0.0;
+    gap_pair_geometry<D>(g, V(d / dist), dist, p.radius[i], p.radius[j], p.mass[i], p.mass[j]);
+    History h{};
+    return Contact::gap_conductance(g, pairs_[p.material[i] * materials_.size() + p.material[j]],
+                                    params_.contact, h, dt_, length(), cell_radius_pair(e));
+  }
+  double gap_wall_conductance(std::size_t i, std::size_t w, std::size_t e,
+                              ContactGeometry<D>& g) const {
+    const auto& p = particles_;
+    const auto prox = walls_[w].proximity(p.position[i]);
+    if (!(prox.distance - p.radius[i] < cutoff_)) return 0.0;
+    gap_wall_geometry<D>(g, prox, p.radius[i], p.mass[i]);
+    History h{};
+    return Contact::gap_conductance(
+        g, pairs_[p.material[i] * materials_.size() + walls_[w].options.material], params_.contact,
+        h, dt_, length(), cell_radius_wall(e));
+  }
+
+  /// Heat exchanged with the fluid: Q = h S (T_f - T), h = Nu k_f / (2R).
+  void add_convection() {
+    if constexpr (thermal && ConvectionT::active) {
+      auto& p = particles_;
+      const auto& f = params_.fluid;
+      const double pr = f.viscosity * f.heat_capacity / f.conductivity;
+      const bool still = !moves();
+      const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) {
+        const double dia = 2.0 * p.radius[i];
+        const V rel = still ? V(f.velocity) : V(f.velocity - force_velocity()[i]);
+        const double re = f.density * dia * rel.norm() / f.viscosity;
+        const double h = ConvectionT::nusselt(re, pr, params_.convection) * f.conductivity / dia;
+        p.heat_rate[i] += h * shape_.surface(p.radius[i]) * (f.temperature - p.temperature[i]);
+      }
+    }
+  }
+
+  /// Thermal analysis: the conductances of the (static) packing, computed once.
+  void store_conductances() {
+    static_pairs_.clear();
+    static_walls_.clear();
+    for_each_conductance([&](std::size_t i, std::size_t j, bool wall, double H) {
+      (wall ? static_walls_ : static_pairs_).push_back({static_cast<std::uint32_t>(i),
+                                                         static_cast<std::uint32_t>(j), H});
+    });
+  }
+
+  /// Thermal analysis: heat rates from the stored conductances (in a fixed order).
+  void static_heat_rates() {
+    if constexpr (thermal) {
+      auto& p = particles_;
+      std::fill(p.heat_rate.begin(), p.heat_rate.end(), 0.0);
+      for (const auto& c : static_pairs_) {
+        const double q = c.conductance * (p.temperature[c.j] - p.temperature[c.i]);
+        p.heat_rate[c.i] += q;
+        p.heat_rate[c.j] -= q;
+      }
+      for (const auto& c : static_walls_)
+        p.heat_rate[c.i] += c.conductance * (walls_[c.j].temperature - p.temperature[c.i]);
+      add_convection();
+    }
+  }
+
+  /// Forward Euler: T += dt Q / C.
+  void integrate_temperature(double dt) {
+    if constexpr (thermal) {
+      auto& p = particles_;
+      const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) p.temperature[i] += dt * p.heat_rate[i] * p.inv_heat_capacity[i];
     }
   }
 
@@ -712,7 +1163,7 @@ private:
   std::vector<Material> materials_;
   std::vector<PairOverride> overrides_;
   std::vector<PairProperties> pairs_;
-  ParticleArrays<D> particles_;
+  Particles particles_;
   std::vector<Wall<D>> walls_;
   NeighborList list_;
   std::vector<History> history_, wall_history_;
@@ -721,6 +1172,16 @@ private:
   std::vector<A> wf_; ///< angular velocities seen by the forces (velocity Verlet)
   double dt_ = 0.0, time_ = 0.0, time_offset_ = 0.0, end_time_ = 0.0;
   double r_max_ = 0.0, skin_ = 0.0, reach_ = 0.0;
+  double cutoff_ = 0.0; ///< largest gap across which heat flows [m]
+  bool heat_on_ = false;
+  /// A conducting pair of a static packing (thermal analysis): particles i and j (or wall j).
+  struct StaticConductance {
+    std::uint32_t i, j;
+    double conductance;
+  };
+  std::vector<StaticConductance> static_pairs_, static_walls_;
+  std::vector<double> cell_pair_, cell_wall_; ///< fluid-cell radius per list entry [m]
+  long steps_since_cells_ = 0;
   long step_ = 0, steps_since_rebuild_ = 0;
   std::int64_t next_id_ = 0;
   bool initialized_ = false;

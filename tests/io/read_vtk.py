@@ -9,8 +9,10 @@ Checked for every series (disks, spheres) and kind (particles, walls):
 - particles: one vertex per point, the point fields id, radius, velocity, omega and force with
   the right number of components and types, and the values of every file (the last one is the
   state at the end of the run) equal to those of the simulation, matched by id;
-- walls: one cell (a line in 2D, a polygon in 3D) per wall, cell field "wall" = wall index, and
-  points on the wall geometry (segment and triangle corners, circle polygon, plane square).
+  (and, for a thermal simulation, temperature and heat_rate);
+- walls: one cell (a line in 2D, a polygon in 3D) per wall, cell field "wall" = wall index (and,
+  for a thermal simulation, "conducts" and "temperature"), and points on the wall geometry
+  (segment and triangle corners, circle polygon, plane square).
 Floating-point values are written with 17 significant digits, so they must agree to a relative
 tolerance of 1e-12. Exits with status 1 and a message per mismatch if anything differs.
 """
@@ -33,6 +35,7 @@ INTEGER_TYPES = {VTK_CHAR, VTK_SIGNED_CHAR, VTK_UNSIGNED_CHAR, VTK_SHORT, VTK_UN
                  VTK_INT, VTK_UNSIGNED_INT, VTK_LONG, VTK_UNSIGNED_LONG, VTK_LONG_LONG,
                  VTK_UNSIGNED_LONG_LONG, VTK_ID_TYPE}
 PARTICLE_FIELDS = {"id": 1, "radius": 1, "velocity": 3, "omega": 3, "force": 3}
+THERMAL_FIELDS = {"temperature": 1, "heat_rate": 1}
 FILE_NAME = re.compile(r"^(?P<series>.+)_(?P<kind>particles|walls)_(?P<number>\d{6})\.vtk$")
 
 failures = []
@@ -156,10 +159,12 @@ def check_particles(path, frame, count):
             fail(path, f"vertex cells use points {used}, expected each of 0..{count - 1} once")
     pd = poly.GetPointData()
     names = {pd.GetArrayName(k) for k in range(pd.GetNumberOfArrays())}
-    if names != set(PARTICLE_FIELDS):
-        fail(path, f"point fields {sorted(names)}, expected {sorted(PARTICLE_FIELDS)}")
+    thermal = "temperature" in frame["particles"][0]
+    fields = dict(PARTICLE_FIELDS, **(THERMAL_FIELDS if thermal else {}))
+    if names != set(fields):
+        fail(path, f"point fields {sorted(names)}, expected {sorted(fields)}")
     arrays = {name: get_array(path, pd, name, c, name == "id")
-              for name, c in PARTICLE_FIELDS.items()}
+              for name, c in fields.items()}
     if any(a is None for a in arrays.values()):
         return
     for name, a in arrays.items():
@@ -177,6 +182,9 @@ def check_particles(path, frame, count):
         check_scalar(where, "radius", arrays["radius"].GetTuple1(i), e["radius"])
         for name in ("velocity", "omega", "force"):
             check_vector(where, name, arrays[name].GetTuple3(i), e[name])
+        if thermal:
+            for name in THERMAL_FIELDS:
+                check_scalar(where, name, arrays[name].GetTuple1(i), e[name])
 
 
 def check_wall_cell(where, pts, ids, wall, circle_segments, plane_size):
@@ -250,8 +258,21 @@ def check_walls(path, frame, series, circle_segments, plane_size):
         fail(path, f"{poly.GetNumberOfPoints()} points, expected {n_points}")
     cd = poly.GetCellData()
     names = {cd.GetArrayName(k) for k in range(cd.GetNumberOfArrays())}
-    if names != {"wall"}:
-        fail(path, f"cell fields {sorted(names)}, expected ['wall']")
+    thermal = "temperature" in walls[0]
+    want_names = {"wall", "conducts", "temperature"} if thermal else {"wall"}
+    if names != want_names:
+        fail(path, f"cell fields {sorted(names)}, expected {sorted(want_names)}")
+    if thermal:
+        conducts = get_array(path, cd, "conducts", 1, True)
+        temperature = get_array(path, cd, "temperature", 1, False)
+        if conducts is not None and temperature is not None:
+            for c in range(min(cells, len(walls))):
+                where = f"{path}: wall {c}"
+                if int(conducts.GetTuple1(c)) != walls[c]["conducts"]:
+                    fail(where, f"conducts = {int(conducts.GetTuple1(c))}, "
+                                f"expected {walls[c]['conducts']}")
+                check_scalar(where, "temperature", temperature.GetTuple1(c),
+                             walls[c]["temperature"])
     owner = get_array(path, cd, "wall", 1, True)
     if owner is None:
         return

@@ -71,12 +71,22 @@ struct Recorder {
         << ", \"radius\": " << num(p.radius[i])
         << ", \"velocity\": " << vec<Sim::dimension>(p.velocity[i])
         << ", \"omega\": " << angular(p.omega[i])
-        << ", \"force\": " << vec<Sim::dimension>(p.force[i]) << "}";
+        << ", \"force\": " << vec<Sim::dimension>(p.force[i]);
+      if constexpr (Sim::thermal)
+        o << ", \"temperature\": " << num(p.temperature[i])
+          << ", \"heat_rate\": " << num(p.heat_rate[i]);
+      o << "}";
     }
     o << "],\n       \"walls\": [";
     for (std::size_t w = 0; w < sim.walls().size(); ++w) {
       o << (w ? ",\n         " : "\n         ")
         << std::visit([](const auto& g) { return wall_json(g); }, sim.walls()[w].geometry);
+      if constexpr (Sim::thermal) {
+        const auto& wall = sim.walls()[w];
+        o.seekp(-1, std::ios_base::cur); // reopen the wall's object
+        o << ", \"conducts\": " << (wall.conducts() ? 1 : 0)
+          << ", \"temperature\": " << num(wall.conducts() ? wall.temperature : 0.0) << "}";
+      }
     }
     o << "]}";
     frames->push_back(o.str());
@@ -140,6 +150,10 @@ grain::Material material() {
 
 using Contact =
     grain::Interaction<grain::normal::LinearSpringDashpot, grain::tangent::SpringDashpotSlider>;
+/// The sphere series is thermo-mechanical: particles and walls also carry temperatures.
+using ThermalContact =
+    grain::Interaction<grain::normal::LinearSpringDashpot, grain::tangent::SpringDashpotSlider,
+                       grain::rolling::None, grain::conduction::BatchelorOBrien>;
 
 std::string disks(const std::filesystem::path& dir, bool& ok) {
   grain::SimulationParams<2, Contact, grain::search::AllPairs> params;
@@ -173,13 +187,18 @@ std::string disks(const std::filesystem::path& dir, bool& ok) {
 }
 
 std::string spheres(const std::filesystem::path& dir, bool& ok) {
-  grain::SimulationParams<3, Contact, grain::search::CellList> params;
+  grain::Simulation<grain::Sphere, grain::search::CellList, ThermalContact>::Params params;
   params.gravity = grain::Vec3(0.0, 0.0, -9.81);
-  grain::Simulation<grain::Sphere, grain::search::CellList, Contact> sim(params);
-  const auto m = sim.add_material(material());
+  params.initial_temperature = 310.0;
+  grain::Simulation<grain::Sphere, grain::search::CellList, ThermalContact> sim(params);
+  grain::Material mat = material();
+  mat.conductivity = 1.0;
+  mat.heat_capacity = 800.0;
+  const auto m = sim.add_material(mat);
   // ids in reverse spatial order: the cell list re-sorts the arrays
   sim.add_particle({.position = {0.09, 0.01, 0.0095}, .radius = 0.0105, .material = m,
-                    .velocity = {0.012, -0.021, 0.005}, .omega = {0.5, -1.25, 2.0}, .id = 20});
+                    .velocity = {0.012, -0.021, 0.005}, .omega = {0.5, -1.25, 2.0},
+                    .temperature = 350.0, .id = 20});
   sim.add_particle({.position = {0.0695, 0.0105, 0.0097}, .radius = 0.0102, .material = m,
                     .velocity = {-0.031, 0.004, 0.0}, .omega = {-1.5, 0.0, 0.25}, .id = 4});
   sim.add_particle({.position = {0.02, -0.03, 0.0118}, .radius = 0.012, .material = m,
@@ -192,6 +211,7 @@ std::string spheres(const std::filesystem::path& dir, bool& ok) {
   floor.name = "floor";
   floor.material = m;
   floor.velocity = grain::Vec3(0.0, 0.0, 0.003);
+  floor.temperature = grain::TimeFunction::linear(290.0, 100.0); // K, K/s
   sim.add_wall(grain::walls::Plane{{0.01, -0.02, 0.0}, grain::Vec3(0.01, -0.005, 1.0).normalized()},
                floor);
   grain::WallOptions<3> tilted;

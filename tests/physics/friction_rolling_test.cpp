@@ -21,6 +21,7 @@
 #include <grain/models/tangent/tsuji.hpp>
 #include <grain/models/tangent/zheng_zhu_yu.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -227,8 +228,8 @@ void sliding_into_rolling() {
   const std::string tag = std::string(Shape::name) + " " + name_of<T>();
   report(tag + ": sliding time [s]", t_stick, t1);
   report(tag + ": final speed [m/s]", v_end, vf);
-  CHECK(t_stick == doctest::Approx(t1).epsilon(5e-3));
-  CHECK(v_end == doctest::Approx(vf).epsilon(5e-3));
+  CHECK(t_stick == grain::test::approx(t1).epsilon(5e-3));
+  CHECK(v_end == grain::test::approx(vf).epsilon(5e-3));
 }
 
 // ------------------------------------------------------------------ 3.2 incline
@@ -257,9 +258,9 @@ void incline(double theta_deg, double mu, double mu_s, bool expect_rolling,
                           std::to_string(static_cast<int>(theta_deg)) + " deg";
   report(tag + ": acceleration [m/s^2]", a, a_exp);
   report(tag + ": angular acceleration [1/s^2]", alpha, alpha_exp);
-  CHECK(a == doctest::Approx(a_exp).epsilon(tolerance));
+  CHECK(a == grain::test::approx(a_exp).epsilon(tolerance));
   // the rolling radius is R - delta/2, hence a slightly larger tolerance for the spin
-  CHECK(alpha == doctest::Approx(alpha_exp).epsilon(tolerance + 2e-3));
+  CHECK(alpha == grain::test::approx(alpha_exp).epsilon(tolerance + 2e-3));
 }
 
 template <class Shape, class T>
@@ -396,8 +397,8 @@ void rolling_stop(double mu_r, double tolerance, typename Rolling::Params rp = {
       std::string(Shape::name) + " " + Rolling::name + " mu_r = " + std::to_string(mu_r);
   report(tag + ": stopping time [s]", t, t_stop);
   report(tag + ": stopping distance [m]", s, s_stop);
-  CHECK(t == doctest::Approx(t_stop).epsilon(tolerance));
-  CHECK(s == doctest::Approx(s_stop).epsilon(tolerance));
+  CHECK(t == grain::test::approx(t_stop).epsilon(tolerance));
+  CHECK(s == grain::test::approx(s_stop).epsilon(tolerance));
   // after stopping: model A chatters about zero without creeping away; EPSD rocks on its
   // rolling spring and comes to rest
   const double x_stop = sim.particles().position[0][0];
@@ -446,11 +447,11 @@ TEST_CASE("3.4b rolling resistance: sliding start, slip phase and stop") {
   const double dec = 5.0 / 7.0 * mu_r * g0;
   const double t_stop = t1 + v1 / dec, s_stop = s1 + v1 * v1 / (2 * dec);
   // the numbers of the verification plan, 3.4(b)
-  CHECK(t1 == doctest::Approx(0.03998).epsilon(1e-3));
-  CHECK(v1 == doctest::Approx(0.68627).epsilon(1e-4));
-  CHECK(s1 == doctest::Approx(0.03370).epsilon(1e-3));
-  CHECK(t_stop == doctest::Approx(1.01937).epsilon(1e-4));
-  CHECK(s_stop == doctest::Approx(0.36977).epsilon(1e-4));
+  CHECK(t1 == grain::test::approx(0.03998).epsilon(1e-3));
+  CHECK(v1 == grain::test::approx(0.68627).epsilon(1e-4));
+  CHECK(s1 == grain::test::approx(0.03370).epsilon(1e-3));
+  CHECK(t_stop == grain::test::approx(1.01937).epsilon(1e-4));
+  CHECK(s_stop == grain::test::approx(0.36977).epsilon(1e-4));
   auto sim = on_floor<Sphere, tangent::SpringDashpotSlider, rolling::Constant>(
       material(mu, -1.0, mu_r), dt, 0.0, v0, 0.0);
   const double x0 = sim.particles().position[0][0];
@@ -475,11 +476,11 @@ TEST_CASE("3.4b rolling resistance: sliding start, slip phase and stop") {
   report("sphere sliding start: distance at rolling [m]", s_roll, s1);
   report("sphere sliding start: stopping time [s]", t, t_stop);
   report("sphere sliding start: stopping distance [m]", s, s_stop);
-  CHECK(t_roll == doctest::Approx(t1).epsilon(5e-3));
-  CHECK(v_roll == doctest::Approx(v1).epsilon(5e-3));
-  CHECK(s_roll == doctest::Approx(s1).epsilon(5e-3));
-  CHECK(t == doctest::Approx(t_stop).epsilon(5e-3));
-  CHECK(s == doctest::Approx(s_stop).epsilon(5e-3));
+  CHECK(t_roll == grain::test::approx(t1).epsilon(5e-3));
+  CHECK(v_roll == grain::test::approx(v1).epsilon(5e-3));
+  CHECK(s_roll == grain::test::approx(s1).epsilon(5e-3));
+  CHECK(t == grain::test::approx(t_stop).epsilon(5e-3));
+  CHECK(s == grain::test::approx(s_stop).epsilon(5e-3));
 }
 
 namespace {
@@ -527,7 +528,7 @@ void rolling_incline(double theta_deg, double mu_r, bool moves) {
     const double a_exp = (1.0 - 1.0 / kap) * g0 * (std::sin(theta) - mu_r * std::cos(theta));
     const double a = slope(t, v);
     report(tag + ": acceleration [m/s^2]", a, a_exp);
-    CHECK(a == doctest::Approx(a_exp).epsilon(5e-3));
+    CHECK(a == grain::test::approx(a_exp).epsilon(5e-3));
     return;
   }
   double vmax, vlate, moved;
@@ -585,8 +586,8 @@ TEST_CASE("3.4d viscous rolling resistance: exponential decay of the rolling spe
     const double s = sim.particles().position[0][0] - x0;
     report(std::string(Shape::name) + " viscous: speed at 0.3 s [m/s]", v, v_exp);
     report(std::string(Shape::name) + " viscous: distance at 0.3 s [m]", s, s_exp);
-    CHECK(v == doctest::Approx(v_exp).epsilon(5e-3));
-    CHECK(s == doctest::Approx(s_exp).epsilon(5e-3));
+    CHECK(v == grain::test::approx(v_exp).epsilon(5e-3));
+    CHECK(s == grain::test::approx(s_exp).epsilon(5e-3));
   };
   run(Sphere{});
   run(Disk{});

@@ -12,6 +12,7 @@
 #include <grain/models/normal/linear_spring_dashpot.hpp>
 #include <grain/models/normal/walton_braun.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -324,9 +325,9 @@ TEST_CASE("Hertz: the undamped impact (maximum overlap, force, contact time)") {
       CHECK_REL(errors, "t_c", r.contact_time, tc, class_b);
       CHECK_REL(errors, "e", r.restitution, 1.0, 1e-4);
       // t_c = 2.9432 delta_max / v = 3.2181 (m*/K_hz)^(2/5) v^(-1/5)
-      CHECK(tc == doctest::Approx(2.9432 * dmax / v).epsilon(1e-4));
+      CHECK(tc == grain::test::approx(2.9432 * dmax / v).epsilon(1e-4));
       CHECK(tc ==
-            doctest::Approx(3.2181 * std::pow(m_star / kh, 0.4) * std::pow(v, -0.2)).epsilon(1e-4));
+            grain::test::approx(3.2181 * std::pow(m_star / kh, 0.4) * std::pow(v, -0.2)).epsilon(1e-4));
     }
   MESSAGE("relative errors at t_c/200:" << errors.summary());
 }
@@ -469,7 +470,7 @@ TEST_CASE("Walton-Braun, variable unloading: residual overlap from the actual ma
       const double dmax = v * std::sqrt(m_star / kl), fmax = v * std::sqrt(m_star * kl);
       const double ku = kl + s * fmax;
       const double e = std::sqrt(kl / ku);
-      CHECK(e == doctest::Approx(1.0 / std::sqrt(1 + s * v * std::sqrt(m_star / kl))));
+      CHECK(e == grain::test::approx(1.0 / std::sqrt(1 + s * v * std::sqrt(m_star / kl))));
       const double tc = 0.5 * pi * std::sqrt(m_star / kl) * (1 + e);
       const auto r = impact<Sphere, M>(
           {.stiffness = kl, .unloading = normal::Unloading::variable, .unloading_slope = s}, e_pair,

@@ -1,6 +1,7 @@
 // Materials, shapes, input validation.
 #include <grain/grain.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -33,21 +34,21 @@ TEST_CASE("shape mass and inertia") {
   auto m = s3.add_material(glass);
   s3.add_particle({.position = Vec3::Zero(), .radius = r, .material = m});
   const double ms = rho * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-  CHECK(s3.particles().mass[0] == doctest::Approx(ms).epsilon(1e-14));
-  CHECK(s3.particles().inertia[0] == doctest::Approx(0.4 * ms * r * r).epsilon(1e-14));
+  CHECK(s3.particles().mass[0] == grain::test::approx(ms).epsilon(1e-14));
+  CHECK(s3.particles().inertia[0] == grain::test::approx(0.4 * ms * r * r).epsilon(1e-14));
 
   Sim2 disk({}, Disk{.thickness = 1e-3});
   m = disk.add_material(glass);
   disk.add_particle({.position = Vec2::Zero(), .radius = r, .material = m});
   const double md = rho * std::numbers::pi * r * r * 1e-3;
-  CHECK(disk.particles().mass[0] == doctest::Approx(md).epsilon(1e-14));
-  CHECK(disk.particles().inertia[0] == doctest::Approx(0.5 * md * r * r).epsilon(1e-14));
+  CHECK(disk.particles().mass[0] == grain::test::approx(md).epsilon(1e-14));
+  CHECK(disk.particles().inertia[0] == grain::test::approx(0.5 * md * r * r).epsilon(1e-14));
 
   Sim2 sphere_like({}, Disk{.sphere_mass = true});
   m = sphere_like.add_material(glass);
   sphere_like.add_particle({.position = Vec2::Zero(), .radius = r, .material = m});
-  CHECK(sphere_like.particles().mass[0] == doctest::Approx(ms).epsilon(1e-14));
-  CHECK(sphere_like.particles().inertia[0] == doctest::Approx(0.4 * ms * r * r).epsilon(1e-14));
+  CHECK(sphere_like.particles().mass[0] == grain::test::approx(ms).epsilon(1e-14));
+  CHECK(sphere_like.particles().inertia[0] == grain::test::approx(0.4 * ms * r * r).epsilon(1e-14));
 }
 
 TEST_CASE("pair properties follow the mixing rules") {
@@ -55,18 +56,18 @@ TEST_CASE("pair properties follow the mixing rules") {
   const Material b{.density = 1000, .young = 3e9, .poisson = 0.4, .shear = 1e9, .restitution = 0.8,
                    .friction = 0.6};
   const auto p = PairProperties::mix(a, b);
-  CHECK(p.young_eff == doctest::Approx(1.0 / ((1 - 0.04) / 1e9 + (1 - 0.16) / 3e9)));
+  CHECK(p.young_eff == grain::test::approx(1.0 / ((1 - 0.04) / 1e9 + (1 - 0.16) / 3e9)));
   const double ga = 1e9 / (2 * 1.2);
-  CHECK(p.shear_eff == doctest::Approx(1.0 / ((2 - 0.2) / ga + (2 - 0.4) / 1e9)));
-  CHECK(p.restitution == doctest::Approx(0.6));
-  CHECK(p.friction == doctest::Approx(0.4));
-  CHECK(p.poisson_avg == doctest::Approx(0.3));
+  CHECK(p.shear_eff == grain::test::approx(1.0 / ((2 - 0.2) / ga + (2 - 0.4) / 1e9)));
+  CHECK(p.restitution == grain::test::approx(0.6));
+  CHECK(p.friction == grain::test::approx(0.4));
+  CHECK(p.poisson_avg == grain::test::approx(0.3));
   // damping ratio zeta = -ln e / sqrt(ln^2 e + pi^2)
   const double l = std::log(0.6);
-  CHECK(p.damping_ratio() == doctest::Approx(-l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi)));
+  CHECK(p.damping_ratio() == grain::test::approx(-l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi)));
   const auto o = PairProperties::mix(a, b, {.restitution = 0.9, .friction = 0.1});
-  CHECK(o.restitution == doctest::Approx(0.9));
-  CHECK(o.friction == doctest::Approx(0.1));
+  CHECK(o.restitution == grain::test::approx(0.9));
+  CHECK(o.friction == grain::test::approx(0.1));
 }
 
 TEST_CASE("bad input names the object, the value and the valid range") {
@@ -134,7 +135,7 @@ TEST_CASE("a time step above the stable limit is refused with both values") {
   sim.add_particle({.position = Vec3::Zero(), .radius = 5e-4, .material = m});
   const double critical = sim.critical_time_step();
   // Rayleigh time of the benchmark material: 4.32699e-5 s
-  CHECK(sim.rayleigh_time() == doctest::Approx(4.32699e-5).epsilon(1e-5));
+  CHECK(sim.rayleigh_time() == grain::test::approx(4.32699e-5).epsilon(1e-5));
   const auto e = error_of([&] { sim.step(); });
   CHECK(has(e, "time_step = 0.001"));
   CHECK(has(e, detail::to_text(critical)));
@@ -150,7 +151,7 @@ TEST_CASE("a time step above the stable limit is refused with both values") {
   m = automatic.add_material({.density = 2500, .young = 1e7, .poisson = 0.3});
   automatic.add_particle({.position = Vec3::Zero(), .radius = 5e-4, .material = m});
   automatic.initialize();
-  CHECK(automatic.time_step() == doctest::Approx(0.1 * automatic.critical_time_step()));
+  CHECK(automatic.time_step() == grain::test::approx(0.1 * automatic.critical_time_step()));
 }
 
 TEST_CASE("contact time-step limit follows the stiffness") {
@@ -159,5 +160,5 @@ TEST_CASE("contact time-step limit follows the stiffness") {
   auto m = sim.add_material({.density = 2500, .young = 1e9, .poisson = 0.3});
   sim.add_particle({.position = Vec2::Zero(), .radius = 1e-3, .material = m});
   const double mass = sim.particles().mass[0];
-  CHECK(sim.contact_time_step() == doctest::Approx(2.0 * std::sqrt(0.5 * mass / 1e3)));
+  CHECK(sim.contact_time_step() == grain::test::approx(2.0 * std::sqrt(0.5 * mass / 1e3)));
 }

@@ -1,6 +1,7 @@
 // Contact models in isolation and the composition of per-contact history.
 #include <grain/grain.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <cmath>
 #include <numbers>
 #include <type_traits>
@@ -47,9 +48,9 @@ TEST_CASE("Hertz: force, stiffness, energy and damping") {
   auto g = head_on(delta, 0.0);
   auto r = normal::Hertz<>::force(g, pair, {}, h);
   const double kh = 4.0 / 3.0 * pair.young_eff * std::sqrt(g.r_eff);
-  CHECK(r.force == doctest::Approx(kh * std::pow(delta, 1.5)).epsilon(1e-13));
-  CHECK(r.stiffness == doctest::Approx(2.0 * pair.young_eff * std::sqrt(g.r_eff * delta)));
-  CHECK(r.elastic_energy == doctest::Approx(0.4 * kh * std::pow(delta, 2.5)));
+  CHECK(r.force == grain::test::approx(kh * std::pow(delta, 1.5)).epsilon(1e-13));
+  CHECK(r.stiffness == grain::test::approx(2.0 * pair.young_eff * std::sqrt(g.r_eff * delta)));
+  CHECK(r.elastic_energy == grain::test::approx(0.4 * kh * std::pow(delta, 2.5)));
   // Tsuji damping with alpha = sqrt(5) |ln e| / sqrt(ln^2 e + pi^2) equals LIGGGHTS' form
   // gamma_n = -2 sqrt(5/6) beta sqrt(S_n m*), S_n = 2 E* sqrt(R* delta)
   auto gv = head_on(delta, 0.1);
@@ -57,8 +58,8 @@ TEST_CASE("Hertz: force, stiffness, energy and damping") {
   const double beta = std::log(0.5) / std::sqrt(std::pow(std::log(0.5), 2) + std::pow(std::numbers::pi, 2));
   const double sn = 2.0 * pair.young_eff * std::sqrt(g.r_eff * delta);
   const double gn = -2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(sn * gv.m_eff);
-  CHECK(rv.damping == doctest::Approx(gn).epsilon(1e-12));
-  CHECK(rv.force - r.force == doctest::Approx(gn * 0.1).epsilon(1e-12));
+  CHECK(rv.damping == grain::test::approx(gn).epsilon(1e-12));
+  CHECK(rv.force - r.force == grain::test::approx(gn * 0.1).epsilon(1e-12));
   // no cohesion: separating fast, the force would be attractive
   auto gs = head_on(1e-9, -1.0);
   CHECK(normal::Hertz<>::force(gs, pair, {}, h).force < 0.0);
@@ -71,8 +72,8 @@ TEST_CASE("linear spring-dashpot: given and Hertz-equivalent stiffness") {
   auto g = head_on(1e-5, 0.2);
   auto r = normal::LinearSpringDashpot::force(g, pair, {.stiffness = 500.0}, h);
   const double eta = 2.0 * pair.damping_ratio() * std::sqrt(g.m_eff * 500.0);
-  CHECK(r.force == doctest::Approx(500.0 * 1e-5 + eta * 0.2));
-  CHECK(r.elastic_energy == doctest::Approx(0.5 * 500.0 * 1e-10));
+  CHECK(r.force == grain::test::approx(500.0 * 1e-5 + eta * 0.2));
+  CHECK(r.elastic_energy == grain::test::approx(0.5 * 500.0 * 1e-10));
   CHECK(normal::LinearSpringDashpot::force(head_on(0, 0), pair, {.stiffness = 500.0}, h).force == 0.0);
   // Hertz equivalence reproduces the bench table (pack2d disk-disk: kn = 591.4824333 N/m,
   // gn = 0.01038376737 N s/m for m* = 9.817477042e-7 kg, R* = 2.5e-4 m, Y* = 5.494505495e6 Pa)
@@ -82,8 +83,8 @@ TEST_CASE("linear spring-dashpot: given and Hertz-equivalent stiffness") {
                    Vec2::Zero(), 0.0, 0.0);
   normal::LinearSpringDashpot::History<2> h2;
   auto rd = normal::LinearSpringDashpot::force(d, pair, {.reference_velocity = 1.0}, h2);
-  CHECK(rd.stiffness == doctest::Approx(591.4824333).epsilon(1e-9));
-  CHECK(rd.damping == doctest::Approx(0.01038376737).epsilon(1e-9));
+  CHECK(rd.stiffness == grain::test::approx(591.4824333).epsilon(1e-9));
+  CHECK(rd.damping == grain::test::approx(0.01038376737).epsilon(1e-9));
 }
 
 TEST_CASE("spring-dashpot-slider: stick, Coulomb truncation, rotation, reverse") {
@@ -101,8 +102,8 @@ TEST_CASE("spring-dashpot-slider: stick, Coulomb truncation, rotation, reverse")
   // many steps: the force saturates at mu Fn and the spring is truncated there
   for (int k = 0; k < 2000; ++k) r = T::force(g, pair, n, {}, h, dt);
   CHECK(r.sliding);
-  CHECK(r.force.norm() == doctest::Approx(0.5).epsilon(1e-12));
-  CHECK(load<3>(h.spring).norm() == doctest::Approx(0.5 / kt).epsilon(1e-12));
+  CHECK(r.force.norm() == grain::test::approx(0.5).epsilon(1e-12));
+  CHECK(load<3>(h.spring).norm() == grain::test::approx(0.5 / kt).epsilon(1e-12));
   CHECK(r.force.dot(g.tangential_velocity) < 0.0);
   // the contact turns by 90 degrees about z: the spring follows into the new tangent plane
   // with its length kept
@@ -111,7 +112,7 @@ TEST_CASE("spring-dashpot-slider: stick, Coulomb truncation, rotation, reverse")
   g.tangential_velocity = g.slip_velocity = Vec3::Zero();
   r = T::force(g, pair, n, {}, h, dt);
   CHECK(std::abs(load<3>(h.spring).dot(g.normal)) < 1e-15);
-  CHECK(load<3>(h.spring).norm() == doctest::Approx(len).epsilon(1e-12));
+  CHECK(load<3>(h.spring).norm() == grain::test::approx(len).epsilon(1e-12));
   // swapping the partners mirrors the spring
   auto before = load<3>(h.spring);
   HertzSDS::History<3> full;

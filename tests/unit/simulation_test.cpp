@@ -1,6 +1,7 @@
 // The solution loop: free flight, determinism across thread counts, walls that move.
 #include <grain/grain.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <cstring>
 #include <random>
 #ifdef _OPENMP
@@ -67,11 +68,11 @@ TEST_CASE("free flight under gravity is exact with velocity Verlet") {
   sim.add_particle({.position = Vec3(0, 0, 1), .radius = 1e-3, .material = m, .velocity = Vec3(1, 0, 2)});
   sim.steps(10000);
   const double t = sim.time();
-  CHECK(t == doctest::Approx(0.1));
+  CHECK(t == grain::test::approx(0.1));
   const auto& p = sim.particles();
-  CHECK(p.position[0].z() == doctest::Approx(1 + 2 * t - 0.5 * 9.81 * t * t).epsilon(1e-10));
-  CHECK(p.position[0].x() == doctest::Approx(t).epsilon(1e-12));
-  CHECK(p.velocity[0].z() == doctest::Approx(2 - 9.81 * t).epsilon(1e-10));
+  CHECK(p.position[0].z() == grain::test::approx(1 + 2 * t - 0.5 * 9.81 * t * t).epsilon(1e-10));
+  CHECK(p.position[0].x() == grain::test::approx(t).epsilon(1e-12));
+  CHECK(p.velocity[0].z() == grain::test::approx(2 - 9.81 * t).epsilon(1e-10));
 }
 
 TEST_CASE("global damping decays the velocity exponentially") {
@@ -82,8 +83,8 @@ TEST_CASE("global damping decays the velocity exponentially") {
   sim.add_particle({.position = Vec2::Zero(), .radius = 1e-3, .material = m, .velocity = Vec2(1, 0), .omega = 10.0});
   sim.steps(1000);
   const auto& p = sim.particles();
-  CHECK(p.velocity[0].x() == doctest::Approx(std::exp(-1e-4 * sim.time() / p.mass[0])).epsilon(1e-6));
-  CHECK(p.omega[0] == doctest::Approx(10.0 * std::exp(-1e-9 * sim.time() / p.inertia[0])).epsilon(1e-6));
+  CHECK(p.velocity[0].x() == grain::test::approx(std::exp(-1e-4 * sim.time() / p.mass[0])).epsilon(1e-6));
+  CHECK(p.omega[0] == grain::test::approx(10.0 * std::exp(-1e-9 * sim.time() / p.inertia[0])).epsilon(1e-6));
 }
 
 #ifdef _OPENMP
@@ -122,7 +123,7 @@ TEST_CASE("a moving wall pushes a particle; a rotating drum drags it") {
   sim.add_particle({.position = Vec2(0.01, 0), .radius = 1e-3, .material = m});
   sim.add_wall(walls::Segment{Vec2(0, -0.01), Vec2(0, 0.01)}, {.material = m, .velocity = Vec2(0.1, 0)});
   sim.run(0.1);
-  CHECK(sim.particles().velocity[0].x() == doctest::Approx(0.2).epsilon(1e-6));
+  CHECK(sim.particles().velocity[0].x() == grain::test::approx(0.2).epsilon(1e-6));
 
   // a disk resting on the inside bottom of a rotating drum is accelerated along the surface
   Simulation<Disk, search::CellList, Contact2> drum(
@@ -142,7 +143,7 @@ TEST_CASE("a fixed particle keeps its velocity") {
   sim.steps(2000);
   const auto i = sim.index_of(0);
   CHECK(sim.particles().velocity[i] == Vec3(0, 0.1, 0));
-  CHECK(sim.particles().position[i].y() == doctest::Approx(0.1 * sim.time()).epsilon(1e-12));
+  CHECK(sim.particles().position[i].y() == grain::test::approx(0.1 * sim.time()).epsilon(1e-12));
 }
 
 TEST_CASE("each integrator's free-fall update is the scheme's closed form") {
@@ -161,10 +162,10 @@ TEST_CASE("each integrator's free-fall update is the scheme's closed form") {
     return sim.particles().position[0].y();
   };
   const double t = n * dt;
-  CHECK(fall(integrate::ForwardEuler{}) == doctest::Approx(n * v0 * dt + g * dt * dt * n * (n - 1) / 2.0).epsilon(1e-11));
-  CHECK(fall(integrate::SymplecticEuler{}) == doctest::Approx(n * v0 * dt + g * dt * dt * n * (n + 1) / 2.0).epsilon(1e-11));
-  CHECK(fall(integrate::Taylor2{}) == doctest::Approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
-  CHECK(fall(integrate::VelocityVerlet{}) == doctest::Approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
+  CHECK(fall(integrate::ForwardEuler{}) == grain::test::approx(n * v0 * dt + g * dt * dt * n * (n - 1) / 2.0).epsilon(1e-11));
+  CHECK(fall(integrate::SymplecticEuler{}) == grain::test::approx(n * v0 * dt + g * dt * dt * n * (n + 1) / 2.0).epsilon(1e-11));
+  CHECK(fall(integrate::Taylor2{}) == grain::test::approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
+  CHECK(fall(integrate::VelocityVerlet{}) == grain::test::approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
 }
 
 TEST_CASE("rotation: a spinning sphere's orientation turns by omega t") {
@@ -173,6 +174,6 @@ TEST_CASE("rotation: a spinning sphere's orientation turns by omega t") {
   sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = m, .omega = Vec3(0, 0, 2.0)});
   sim.steps(2000);
   const Eigen::AngleAxisd aa(sim.particles().orientation[0]);
-  CHECK(aa.angle() == doctest::Approx(0.2).epsilon(1e-10));
+  CHECK(aa.angle() == grain::test::approx(0.2).epsilon(1e-10));
   CHECK(aa.axis().isApprox(Vec3::UnitZ()));
 }

@@ -2,6 +2,7 @@
 #include <grain/core/table.hpp>
 #include <grain/core/time_function.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -85,13 +86,13 @@ TEST_CASE("time function: linear ramp with its time origin") {
   const auto f = TimeFunction::linear(v0, slope, t0);
   CHECK(f.kind() == TimeFunction::Kind::linear);
   CHECK(f(t0) == v0);
-  CHECK(f(t0 + 2.5) == doctest::Approx(v0 + slope * 2.5).epsilon(1e-15));
-  CHECK(f(0.0) == doctest::Approx(v0 - slope * t0).epsilon(1e-15)); // defined before t0 too
-  CHECK(f(12.0) == doctest::Approx(1.5 - 0.4 * 10.0).epsilon(1e-15));
+  CHECK(f(t0 + 2.5) == grain::test::approx(v0 + slope * 2.5).epsilon(1e-15));
+  CHECK(f(0.0) == grain::test::approx(v0 - slope * t0).epsilon(1e-15)); // defined before t0 too
+  CHECK(f(12.0) == grain::test::approx(1.5 - 0.4 * 10.0).epsilon(1e-15));
   const auto g = TimeFunction::linear(3.0, 2.0); // t0 = 0 by default
   CHECK(g(0.0) == 3.0);
-  CHECK(g(0.25) == doctest::Approx(3.5).epsilon(1e-15));
-  CHECK(g(-1.0) == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(g(0.25) == grain::test::approx(3.5).epsilon(1e-15));
+  CHECK(g(-1.0) == grain::test::approx(1.0).epsilon(1e-15));
 }
 
 TEST_CASE("time function: oscillatory with phase and time origin") {
@@ -100,26 +101,26 @@ TEST_CASE("time function: oscillatory with phase and time origin") {
   CHECK(f.kind() == TimeFunction::Kind::oscillatory);
   for (double t : {0.0, 0.97, 1.0, 1.013, 1.05, 1.1, 2.345, 10.0}) {
     const double expected = base + amp * std::sin(2.0 * pi * (t - t0) / period + phase);
-    CHECK(f(t) == doctest::Approx(expected).epsilon(1e-12));
+    CHECK(f(t) == grain::test::approx(expected).epsilon(1e-12));
   }
   // at t0 the value is base + amp sin(phase); periodic in the period
-  CHECK(f(t0) == doctest::Approx(base + amp * std::sin(phase)).epsilon(1e-14));
-  CHECK(f(t0 + 3 * period) == doctest::Approx(f(t0)).epsilon(1e-12));
+  CHECK(f(t0) == grain::test::approx(base + amp * std::sin(phase)).epsilon(1e-14));
+  CHECK(f(t0 + 3 * period) == grain::test::approx(f(t0)).epsilon(1e-12));
 
   // phase 0, t0 0: quarter periods give base, base + amp, base, base - amp
   const auto g = TimeFunction::oscillatory(1.0, 2.0, 4.0);
-  CHECK(g(0.0) == doctest::Approx(1.0).epsilon(1e-15));
-  CHECK(g(1.0) == doctest::Approx(3.0).epsilon(1e-15));
-  CHECK(g(2.0) == doctest::Approx(1.0).epsilon(1e-15));
-  CHECK(g(3.0) == doctest::Approx(-1.0).epsilon(1e-15));
+  CHECK(g(0.0) == grain::test::approx(1.0).epsilon(1e-15));
+  CHECK(g(1.0) == grain::test::approx(3.0).epsilon(1e-15));
+  CHECK(g(2.0) == grain::test::approx(1.0).epsilon(1e-15));
+  CHECK(g(3.0) == grain::test::approx(-1.0).epsilon(1e-15));
   // the phase shifts the wave: a phase of pi/2 starts at the crest, at t0
   const auto h = TimeFunction::oscillatory(0.0, 1.0, 4.0, pi / 2, 0.5);
-  CHECK(h(0.5) == doctest::Approx(1.0).epsilon(1e-15));
-  CHECK(h(1.5) == doctest::Approx(0.0).scale(1.0).epsilon(1e-14));
-  CHECK(h(2.5) == doctest::Approx(-1.0).epsilon(1e-15));
+  CHECK(h(0.5) == grain::test::approx(1.0).epsilon(1e-15));
+  CHECK(h(1.5) == grain::test::approx(0.0).scale(1.0).epsilon(1e-14));
+  CHECK(h(2.5) == grain::test::approx(-1.0).epsilon(1e-15));
   // a negative amplitude flips the sign
   const auto n = TimeFunction::oscillatory(0.0, -1.0, 4.0);
-  CHECK(n(1.0) == doctest::Approx(-1.0).epsilon(1e-15));
+  CHECK(n(1.0) == grain::test::approx(-1.0).epsilon(1e-15));
 }
 
 TEST_CASE("time function: activity interval is closed, zero while inactive, no time shift") {
@@ -131,9 +132,9 @@ TEST_CASE("time function: activity interval is closed, zero while inactive, no t
   // boundaries belong to the interval
   CHECK(f.active(0.5));
   CHECK(f.active(1.5));
-  CHECK(f(0.5) == doctest::Approx(2.0).epsilon(1e-15)); // 1 + 2 * 0.5: t0 stays 0
-  CHECK(f(1.5) == doctest::Approx(4.0).epsilon(1e-15));
-  CHECK(f(1.0) == doctest::Approx(3.0).epsilon(1e-15));
+  CHECK(f(0.5) == grain::test::approx(2.0).epsilon(1e-15)); // 1 + 2 * 0.5: t0 stays 0
+  CHECK(f(1.5) == grain::test::approx(4.0).epsilon(1e-15));
+  CHECK(f(1.0) == grain::test::approx(3.0).epsilon(1e-15));
   // just outside: inactive, value 0; value() ignores the interval
   const double before = std::nextafter(0.5, 0.0), after = std::nextafter(1.5, 2.0);
   CHECK_FALSE(f.active(before));
@@ -142,7 +143,7 @@ TEST_CASE("time function: activity interval is closed, zero while inactive, no t
   CHECK(f(after) == 0.0);
   CHECK(f(-10.0) == 0.0);
   CHECK(f(10.0) == 0.0);
-  CHECK(f.value(10.0) == doctest::Approx(21.0).epsilon(1e-15));
+  CHECK(f.value(10.0) == grain::test::approx(21.0).epsilon(1e-15));
   CHECK_FALSE(f.active(qnan));
   CHECK(f(qnan) == 0.0);
 
@@ -150,11 +151,11 @@ TEST_CASE("time function: activity interval is closed, zero while inactive, no t
   const auto o = TimeFunction::oscillatory(1.0, 1.0, 1.0).active(2.0, inf);
   CHECK_FALSE(o.active(1.999));
   CHECK(o(1.999) == 0.0);
-  CHECK(o(2.25) == doctest::Approx(2.0).epsilon(1e-12));
+  CHECK(o(2.25) == grain::test::approx(2.0).epsilon(1e-12));
   CHECK(o.active(1e300));
   const auto tab = TimeFunction::table(Table({{0.0, 1.0}, {1.0, 3.0}})).active(-inf, 0.5);
   CHECK(tab(-5.0) == 1.0);
-  CHECK(tab(0.5) == doctest::Approx(2.0).epsilon(1e-15));
+  CHECK(tab(0.5) == grain::test::approx(2.0).epsilon(1e-15));
   CHECK(tab(0.75) == 0.0);
   const auto instant = TimeFunction::constant(7.0).active(1.0, 1.0);
   CHECK(instant(1.0) == 7.0);
@@ -162,7 +163,7 @@ TEST_CASE("time function: activity interval is closed, zero while inactive, no t
   // a later interval replaces the earlier one; the original is unchanged
   const auto g = f.active(0.0, 0.25);
   CHECK(g(1.0) == 0.0);
-  CHECK(f(1.0) == doctest::Approx(3.0).epsilon(1e-15));
+  CHECK(f(1.0) == grain::test::approx(3.0).epsilon(1e-15));
   CHECK(has(g.describe(), "active in [0, 0.25]"));
 }
 
@@ -178,10 +179,10 @@ TEST_CASE("table: interpolation at and between points, end values held outside")
   CHECK(t(3.0) == 0.0);
   CHECK(t(4.0) == 5.0);
   // linear in between
-  CHECK(t(0.25) == doctest::Approx(12.5).epsilon(1e-15));
-  CHECK(t(2.0) == doctest::Approx(10.0).epsilon(1e-15));
-  CHECK(t(2.5) == doctest::Approx(5.0).epsilon(1e-15));
-  CHECK(t(3.5) == doctest::Approx(2.5).epsilon(1e-15));
+  CHECK(t(0.25) == grain::test::approx(12.5).epsilon(1e-15));
+  CHECK(t(2.0) == grain::test::approx(10.0).epsilon(1e-15));
+  CHECK(t(2.5) == grain::test::approx(5.0).epsilon(1e-15));
+  CHECK(t(3.5) == grain::test::approx(2.5).epsilon(1e-15));
   // end values outside, never NaN, even far away and at infinity
   for (double x : {-1e-12, -1.0, -1e300, -inf}) CHECK(t(x) == 10.0);
   for (double x : {4.0 + 1e-12, 5.0, 1e300, inf}) CHECK(t(x) == 5.0);
@@ -197,7 +198,7 @@ TEST_CASE("table: interpolation at and between points, end values held outside")
 
   // a two-point table; no value is NaN over a sweep far past both ends
   const Table two({{-1.0, 2.0}, {1.0, 4.0}});
-  CHECK(two(0.0) == doctest::Approx(3.0).epsilon(1e-15));
+  CHECK(two(0.0) == grain::test::approx(3.0).epsilon(1e-15));
   for (int k = -100; k <= 100; ++k) {
     const double v = two(k * 0.1);
     CHECK_FALSE(std::isnan(v));
@@ -260,8 +261,8 @@ TEST_CASE("table: inline columns, pairs and a file give the same table") {
   CHECK(from_vector.label() == "Table");
   CHECK(from_file.label() == "Table from file '" + file.name() + "'");
   for (double x : {-1.0, 0.0, 0.2, 0.5, 1.0, 2.0, 3.0}) CHECK(from_file(x) == cols(x));
-  CHECK(from_file(0.25) == doctest::Approx(2.0).epsilon(1e-15));
-  CHECK(from_file(1.25) == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(from_file(0.25) == grain::test::approx(2.0).epsilon(1e-15));
+  CHECK(from_file(1.25) == grain::test::approx(1.0).epsilon(1e-15));
 
   // a time function shares its table; copies are cheap and evaluate the same
   const auto f = TimeFunction::table(from_file);
@@ -275,7 +276,7 @@ TEST_CASE("table: inline columns, pairs and a file give the same table") {
   CHECK(TimeFunction::constant(1.0).table_ptr() == nullptr);
   const auto shared = std::make_shared<const Table>(cols);
   CHECK(TimeFunction::table(shared).table_ptr() == shared.get());
-  CHECK(TimeFunction::table({{0.0, 0.0}, {1.0, 2.0}})(0.5) == doctest::Approx(1.0));
+  CHECK(TimeFunction::table({{0.0, 0.0}, {1.0, 2.0}})(0.5) == grain::test::approx(1.0));
   CHECK(has(f.describe(), "3 points"));
 }
 
@@ -414,23 +415,23 @@ TEST_CASE("vector time function: components, direction times magnitude, activity
   const VectorTimeFunction<3> v(TimeFunction::linear(0.0, 1.0), 2.0,
                                 TimeFunction::oscillatory(0.0, 1.0, 4.0).active(0.0, 2.0));
   const Vec3 a = v(1.0);
-  CHECK(a.x() == doctest::Approx(1.0));
+  CHECK(a.x() == grain::test::approx(1.0));
   CHECK(a.y() == 2.0);
-  CHECK(a.z() == doctest::Approx(1.0));
+  CHECK(a.z() == grain::test::approx(1.0));
   CHECK(v(3.0).z() == 0.0); // z inactive after t = 2
-  CHECK(v.value(3.0).z() == doctest::Approx(-1.0));
+  CHECK(v.value(3.0).z() == grain::test::approx(-1.0));
   CHECK(v.active(3.0)); // the other components are
 
   const auto w = VectorTimeFunction<2>::along(Vec2(3.0, 4.0), TimeFunction::linear(0.0, 10.0))
                      .active(1.0, 2.0);
   CHECK(w.is_along());
-  CHECK(w.direction().x() == doctest::Approx(0.6));
-  CHECK(w.direction().y() == doctest::Approx(0.8));
-  CHECK(w(1.5).x() == doctest::Approx(9.0));
-  CHECK(w(1.5).y() == doctest::Approx(12.0));
+  CHECK(w.direction().x() == grain::test::approx(0.6));
+  CHECK(w.direction().y() == grain::test::approx(0.8));
+  CHECK(w(1.5).x() == grain::test::approx(9.0));
+  CHECK(w(1.5).y() == grain::test::approx(12.0));
   CHECK_FALSE(w.active(0.5));
   CHECK(w(0.5) == Vec2::Zero());
-  CHECK(w.value(0.5).y() == doctest::Approx(4.0));
+  CHECK(w.value(0.5).y() == grain::test::approx(4.0));
 
   const VectorTimeFunction<2> zero;
   CHECK(zero(1.0) == Vec2::Zero());

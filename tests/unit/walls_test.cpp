@@ -1,6 +1,7 @@
 // Wall proximity, contact geometry and wall motion.
 #include <grain/grain.hpp>
 #include <doctest/doctest.h>
+#include "../approx.hpp"
 #include <cmath>
 #include <numbers>
 
@@ -21,61 +22,61 @@ Wall<D> make(const G& g, WallOptions<D> o = {}) {
 TEST_CASE("segment: interior and end points") {
   auto w = make<2>(walls::Segment{Vec2(0, 0), Vec2(2, 0)});
   auto p = w.proximity(Vec2(1.0, 0.3));
-  CHECK(p.distance == doctest::Approx(0.3));
+  CHECK(p.distance == grain::test::approx(0.3));
   CHECK(p.normal.isApprox(Vec2(0, -1)));
   CHECK(std::isinf(p.curvature_radius));
   p = w.proximity(Vec2(1.0, -0.2)); // other side
-  CHECK(p.distance == doctest::Approx(0.2));
+  CHECK(p.distance == grain::test::approx(0.2));
   CHECK(p.normal.isApprox(Vec2(0, 1)));
   p = w.proximity(Vec2(2.3, 0.4)); // beyond the end: radial normal
-  CHECK(p.distance == doctest::Approx(0.5));
+  CHECK(p.distance == grain::test::approx(0.5));
   CHECK(p.normal.isApprox(Vec2(-0.6, -0.8)));
 }
 
 TEST_CASE("circle: inside (concave) and outside (convex)") {
   auto w = make<2>(walls::Circle{Vec2(1, 1), 2.0});
   auto p = w.proximity(Vec2(1.5, 1.0));
-  CHECK(p.distance == doctest::Approx(1.5));
+  CHECK(p.distance == grain::test::approx(1.5));
   CHECK(p.normal.isApprox(Vec2(1, 0)));
-  CHECK(p.curvature_radius == doctest::Approx(-2.0));
+  CHECK(p.curvature_radius == grain::test::approx(-2.0));
   p = w.proximity(Vec2(1.0, 4.0));
-  CHECK(p.distance == doctest::Approx(1.0));
+  CHECK(p.distance == grain::test::approx(1.0));
   CHECK(p.normal.isApprox(Vec2(0, -1)));
-  CHECK(p.curvature_radius == doctest::Approx(2.0));
+  CHECK(p.curvature_radius == grain::test::approx(2.0));
 
   // effective radius: R Rw/(Rw - R) inside, R Rw/(Rw + R) outside
   ContactGeometry<2> g;
   const double r = 0.1;
   Vec2 x(1.0 + 1.95, 1.0);
   wall_geometry<2>(g, w, w.proximity(x), x, r, 1.0, Vec2::Zero(), 0.0);
-  CHECK(g.overlap == doctest::Approx(0.05));
-  CHECK(g.r_eff == doctest::Approx(r * 2.0 / (2.0 - r)));
+  CHECK(g.overlap == grain::test::approx(0.05));
+  CHECK(g.r_eff == grain::test::approx(r * 2.0 / (2.0 - r)));
   x = Vec2(1.0 + 2.05, 1.0);
   wall_geometry<2>(g, w, w.proximity(x), x, r, 1.0, Vec2::Zero(), 0.0);
-  CHECK(g.overlap == doctest::Approx(0.05));
-  CHECK(g.r_eff == doctest::Approx(r * 2.0 / (2.0 + r)));
+  CHECK(g.overlap == grain::test::approx(0.05));
+  CHECK(g.r_eff == grain::test::approx(r * 2.0 / (2.0 + r)));
   // lens radius of circles r and Rw at centre distance Rw + r - overlap
   const double d = 2.05, x0 = (r * r - 4.0 + d * d) / (2 * d);
-  CHECK(g.contact_radius == doctest::Approx(std::sqrt(r * r - x0 * x0)));
+  CHECK(g.contact_radius == grain::test::approx(std::sqrt(r * r - x0 * x0)));
 }
 
 TEST_CASE("plane and triangle") {
   auto pl = make<3>(walls::Plane{Vec3(0, 0, 1), Vec3(0, 0, 1)});
   auto p = pl.proximity(Vec3(5, -3, 1.25));
-  CHECK(p.distance == doctest::Approx(0.25));
+  CHECK(p.distance == grain::test::approx(0.25));
   CHECK(p.normal.isApprox(Vec3(0, 0, -1)));
 
   auto tr = make<3>(walls::Triangle{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)});
   p = tr.proximity(Vec3(0.2, 0.2, 0.5)); // face
-  CHECK(p.distance == doctest::Approx(0.5));
+  CHECK(p.distance == grain::test::approx(0.5));
   CHECK(p.normal.isApprox(Vec3(0, 0, -1)));
   p = tr.proximity(Vec3(0.5, -0.3, -0.4)); // edge ab, below
-  CHECK(p.distance == doctest::Approx(0.5));
+  CHECK(p.distance == grain::test::approx(0.5));
   CHECK(p.normal.isApprox(Vec3(0, 0.6, 0.8)));
   p = tr.proximity(Vec3(-0.3, -0.4, 0)); // corner a
-  CHECK(p.distance == doctest::Approx(0.5));
+  CHECK(p.distance == grain::test::approx(0.5));
   p = tr.proximity(Vec3(0.8, 0.8, 0)); // hypotenuse
-  CHECK(p.distance == doctest::Approx(0.6 / std::sqrt(2.0)));
+  CHECK(p.distance == grain::test::approx(0.6 / std::sqrt(2.0)));
 }
 
 TEST_CASE("pair geometry: overlap, arms and relative velocity with rotation") {
@@ -84,14 +85,14 @@ TEST_CASE("pair geometry: overlap, arms and relative velocity with rotation") {
   const Vec3 n(1, 0, 0);
   pair_geometry<3>(g, xi, n, 0.19, 0.1, 0.1, 2.0, 2.0, Vec3(1, 0, 0), Vec3(-1, 0, 0),
                    Vec3(0, 0, 10), Vec3(0, 0, 0));
-  CHECK(g.overlap == doctest::Approx(0.01));
+  CHECK(g.overlap == grain::test::approx(0.01));
   CHECK(g.point.isApprox(Vec3(0.095, 0, 0)));
-  CHECK(g.normal_velocity == doctest::Approx(2.0));
+  CHECK(g.normal_velocity == grain::test::approx(2.0));
   // w x arm = (0,0,10) x (0.095,0,0) = (0, 0.95, 0)
   CHECK(g.tangential_velocity.isApprox(Vec3(0, 0.95, 0)));
-  CHECK(g.r_eff == doctest::Approx(0.05));
-  CHECK(g.m_eff == doctest::Approx(1.0));
-  CHECK(g.contact_radius == doctest::Approx(std::sqrt(0.01 - 0.095 * 0.095)));
+  CHECK(g.r_eff == grain::test::approx(0.05));
+  CHECK(g.m_eff == grain::test::approx(1.0));
+  CHECK(g.contact_radius == grain::test::approx(std::sqrt(0.01 - 0.095 * 0.095)));
 }
 
 TEST_CASE("wall motion: translation, rotation about the pivot, surface velocity") {
@@ -102,7 +103,7 @@ TEST_CASE("wall motion: translation, rotation about the pivot, surface velocity"
   const auto& s = std::get<walls::Segment>(w.geometry);
   CHECK((s.a - Vec2(0.5, -1)).norm() < 1e-12);
   CHECK((s.b - Vec2(0.5, 1)).norm() < 1e-12);
-  CHECK(w.displacement_since_snapshot(10.0) == doctest::Approx(std::hypot(1.5, 1.0)));
+  CHECK(w.displacement_since_snapshot(10.0) == grain::test::approx(std::hypot(1.5, 1.0)));
 
   // a rotating circle keeps its geometry but drags particles with its surface speed
   auto drum = make<2>(walls::Circle{Vec2::Zero(), 1.0}, {.omega = 2.0});
@@ -113,7 +114,7 @@ TEST_CASE("wall motion: translation, rotation about the pivot, surface velocity"
 
   auto plane = make<3>(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.velocity = Vec3(0, 0, 0.1)});
   plane.move(2.0);
-  CHECK(plane.proximity(Vec3(0, 0, 1)).distance == doctest::Approx(0.8));
+  CHECK(plane.proximity(Vec3(0, 0, 1)).distance == grain::test::approx(0.8));
 }
 
 TEST_CASE("a particle turning with a rotating wall has no relative rotation") {
@@ -125,6 +126,6 @@ TEST_CASE("a particle turning with a rotating wall has no relative rotation") {
   ContactGeometry<2> g;
   const Vec2 v = cross(0.7, x); // rigid rotation of the centre about the drum axis
   wall_geometry<2>(g, drum, drum.proximity(x), x, r, 1.0, v, 0.7);
-  CHECK(g.omega_rel == doctest::Approx(0.0));
+  CHECK(g.omega_rel == grain::test::approx(0.0));
   CHECK(g.velocity.norm() < 1e-14);
 }

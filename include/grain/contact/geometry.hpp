@@ -125,6 +125,39 @@ inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const Wall
   g.wall = true;
 }
 
+/// Geometry of two particles separated by a gap (for conduction across the gap): normal,
+/// distance, radii, r_eff, m_eff and overlap = -gap; no velocities, contact radius 0.
+template <int D>
+inline void gap_pair_geometry(ContactGeometry<D>& g, const Vec<D>& n, double dist, double ri,
+                              double rj, double mi, double mj) {
+  g.normal = n;
+  g.distance = dist;
+  g.overlap = ri + rj - dist;
+  g.radius_i = ri;
+  g.radius_j = rj;
+  g.r_eff = ri * rj / (ri + rj);
+  g.m_eff = mi * mj / (mi + mj);
+  g.contact_radius = 0.0;
+  g.normal_velocity = 0.0;
+  g.wall = false;
+}
+
+/// Geometry of a particle separated from a wall by a gap (see gap_pair_geometry).
+template <int D>
+inline void gap_wall_geometry(ContactGeometry<D>& g, const WallProximity<D>& w, double r,
+                              double m) {
+  g.normal = w.normal;
+  g.distance = w.distance;
+  g.overlap = r - w.distance;
+  g.radius_i = r;
+  g.radius_j = w.curvature_radius;
+  g.r_eff = std::isinf(w.curvature_radius) ? r : r * w.curvature_radius / (w.curvature_radius + r);
+  g.m_eff = m;
+  g.contact_radius = 0.0;
+  g.normal_velocity = 0.0;
+  g.wall = true;
+}
+
 /// Sets `slip_velocity` from the velocities that moved the particles over the last step.
 template <int D>
 inline void set_slip_velocity(ContactGeometry<D>& g, const Vec<D>& vi, const Vec<D>& vj,

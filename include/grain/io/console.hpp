@@ -64,6 +64,15 @@ struct Summary {
                  sim.end_time(),
                  static_cast<long>(std::llround((sim.end_time() - sim.time()) / sim.time_step())),
                  pp, pw);
+    if constexpr (Sim::thermal) {
+      static constexpr const char* kinds[] = {"automatic", "mechanical", "thermal",
+                                              "thermo-mechanical"};
+      std::fprintf(out,
+                   "       analysis: %s; mean temperature %.6g K, heat content %.6g J; thermal "
+                   "time scale R^2 rho c/k %.4g s, conduction limit %.4g s\n",
+                   kinds[static_cast<int>(sim.analysis())], sim.mean_temperature(),
+                   sim.thermal_energy(), sim.thermal_time_step(), sim.conduction_time_step());
+    }
     std::fflush(out);
   }
   template <class Sim>
@@ -82,6 +91,9 @@ struct Summary {
                  "particle-wall; kinetic energy %.6g J\n",
                  sim.time(), sim.counters().steps - steps0, wall, stepping, sim.counters().rebuilds,
                  stepping > 0 ? ps / stepping : 0.0, pp, pw, sim.kinetic_energy());
+    if constexpr (Sim::thermal)
+      std::fprintf(out, "       mean temperature %.6g K, heat content %.6g J\n",
+                   sim.mean_temperature(), sim.thermal_energy());
     std::fflush(out);
   }
 };

@@ -62,6 +62,12 @@ void write_particles_vtk(const Sim& sim, const std::string& path) {
   for (std::size_t i = 0; i < n; ++i) detail::put_angular(o, p.omega[i]);
   o << "VECTORS force double\n";
   for (std::size_t i = 0; i < n; ++i) detail::put3(o, p.force[i]);
+  if constexpr (requires { p.temperature; p.heat_rate; }) {
+    o << "SCALARS temperature double 1\nLOOKUP_TABLE default\n";
+    for (std::size_t i = 0; i < n; ++i) o << p.temperature[i] << '\n';
+    o << "SCALARS heat_rate double 1\nLOOKUP_TABLE default\n";
+    for (std::size_t i = 0; i < n; ++i) o << p.heat_rate[i] << '\n';
+  }
 }
 
 /// Writes the walls of a simulation as legacy VTK polydata (lines in 2D, polygons in 3D), with
@@ -130,6 +136,13 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
   }
   o << "CELL_DATA " << cells.size() << "\nSCALARS wall int 1\nLOOKUP_TABLE default\n";
   for (auto w : owner) o << w << '\n';
+  if constexpr (Sim::thermal) {
+    // insulated walls: conducts = 0 and temperature 0
+    o << "SCALARS conducts int 1\nLOOKUP_TABLE default\n";
+    for (auto w : owner) o << (sim.walls()[w].conducts() ? 1 : 0) << '\n';
+    o << "SCALARS temperature double 1\nLOOKUP_TABLE default\n";
+    for (auto w : owner) o << (sim.walls()[w].conducts() ? sim.walls()[w].temperature : 0.0) << '\n';
+  }
 }
 
 /// Output action: one particle file and one wall file per call, numbered 000000, 000001, ...

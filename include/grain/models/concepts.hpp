@@ -14,12 +14,13 @@
 #include <grain/contact/geometry.hpp>
 #include <grain/particles/material.hpp>
 #include <concepts>
+#include <limits>
 #include <utility>
 
 namespace grain {
 
 /// The slots of `Interaction<Normal, Tangent, Rolling, Conduction, AreaCorrection>`.
-enum class Slot { normal, tangent, rolling, conduction, area };
+enum class Slot { normal, tangent, rolling, conduction, area, convection };
 
 /// Result of a normal-force model (all scalars along the normal).
 struct NormalResult {
@@ -81,14 +82,89 @@ concept RollingModel =
       { M::torque(g, p, n, prm, h, 1.0, ti, tj) };
     };
 
-/// A heat-conduction model (the thermal layer fills this slot; `conduction::None` is the
-/// mechanical default).
-template <class M>
-concept ConductionModel = detail::fills_slot<M, Slot::conduction>;
+/// What a conduction model sees of a pair besides its `ContactGeometry` (SI units). For a pair
+/// that does not touch (indirect conduction across a gap) the geometry holds the normal, the
+/// centre distance, the radii, r_eff and m_eff, and a negative overlap (minus the gap).
+struct HeatContext {
+  /// Contact radius a after the area correction [m]; 0 for a pair that does not touch.
+  double contact_radius = 0.0;
+  /// Centre distance consistent with `contact_radius` [m]: for touching particles
+  /// sqrt(R_i^2 - a^2) + sqrt(R_j^2 - a^2), for a flat wall the centre-to-surface distance
+  /// sqrt(R_i^2 - a^2); for a gap the actual distance (centre-to-surface for a wall).
+  double distance = 0.0;
+  /// Surface separation [m]: 0 while touching, > 0 across a gap.
+  double gap = 0.0;
+  /// Radius of the fluid cell shared by the pair [m] (the Voronoi models' r_ij), set by the
+  /// simulation when the conduction model asks for it (`uses_cell_radius`), else infinite.
+  double cell_radius = std::numeric_limits<double>::infinity();
+  /// Cylinder length L [m] of 2D disks; 0 for spheres (and for disks with sphere mass).
+  double length = 0.0;
+  double time_step = 0.0; ///< [s]
+  bool touching = false;
+};
 
-/// A contact-area correction model (`area::None` is the default).
+/// A heat-conduction model: `static constexpr bool thermal` (false only for `conduction::None`)
+/// and, if thermal, `double conductance(const ContactGeometry<D>&, const PairProperties&,
+/// const HeatContext&, const Params&, History<D>&)` returning the conductance H [W/K] of the
+/// pair, so that the heat rate into particle i is H (T_j - T_i). A model that also conducts across
+/// gaps sets `static constexpr bool indirect = true` and gives `static double cutoff(const
+/// Params&, double r_max)`, the largest gap [m] across which it conducts.
 template <class M>
-concept AreaCorrectionModel = detail::fills_slot<M, Slot::area>;
+concept ConductionModel =
+    detail::fills_slot<M, Slot::conduction> && requires {
+      { M::thermal } -> std::convertible_to<bool>;
+    } && (!M::thermal || requires(const ContactGeometry<3>& g, const ContactGeometry<2>& g2,
+                                  const PairProperties& p, const HeatContext& c,
+                                  const typename M::Params& prm, typename M::template History<3>& h,
+                                  typename M::template History<2>& h2) {
+      { M::conductance(g, p, c, prm, h) } -> std::convertible_to<double>;
+      { M::conductance(g2, p, c, prm, h2) } -> std::convertible_to<double>;
+    });
+
+/// A contact-area correction: `double radius(const ContactGeometry<D>&, const PairProperties&,
+/// const NormalResult&, const Params&)` returns the contact radius [m] that conduction models use.
+template <class M>
+concept AreaCorrectionModel =
+    detail::fills_slot<M, Slot::area> &&
+    requires(const ContactGeometry<3>& g, const PairProperties& p, const NormalResult& n,
+             const typename M::Params& prm) {
+      { M::radius(g, p, n, prm) } -> std::convertible_to<double>;
+    };
+
+/// A convection model (particle to surrounding fluid), an optional argument of `Simulation`:
+/// `static constexpr bool active` and, if active, `double nusselt(double Re, double Pr, const
+/// Params&)`, the Nusselt number of a particle at Reynolds number Re = rho_f 2R |v_f - v|/mu_f and
+/// Prandtl number Pr = mu_f c_f / k_f. The simulation applies h = Nu k_f/(2R) over the particle
+/// surface S: Q = h S (T_f - T).
+template <class M>
+concept ConvectionModel =
+    requires {
+      { M::slot } -> std::convertible_to<Slot>;
+      requires M::slot == Slot::convection;
+      typename M::Params;
+      { M::active } -> std::convertible_to<bool>;
+      { M::validate(std::declval<const typename M::Params&>()) };
+    } && (!M::active || requires(const typename M::Params& p) {
+      { M::nusselt(1.0, 1.0, p) } -> std::convertible_to<double>;
+    });
+
+/// True if the conduction model `M` conducts across gaps (evaluated for pairs within its cutoff).
+template <class M>
+inline constexpr bool conducts_across_gaps = [] {
+  if constexpr (requires { M::indirect; })
+    return static_cast<bool>(M::indirect);
+  else
+    return false;
+}();
+
+/// True if the conduction model `M` needs the fluid-cell radius of each pair.
+template <class M>
+inline constexpr bool uses_cell_radius = [] {
+  if constexpr (requires { M::uses_cell_radius; })
+    return static_cast<bool>(M::uses_cell_radius);
+  else
+    return false;
+}();
 
 /// Mirrors a history when the partners of a pair swap roles (no-op unless the model defines it).
 template <class M, int D>

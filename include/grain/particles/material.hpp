@@ -13,6 +13,7 @@
 /// overridden for that pair.
 
 #include <grain/core/error.hpp>
+#include <grain/core/vector.hpp>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -56,6 +57,29 @@ struct Material {
   }
 };
 
+/// The fluid around the particles (for convection and for conduction through the interstitial
+/// fluid). Units: K, m/s, kg/m^3, Pa s, W/(m K), J/(kg K). There is no flow solver: temperature
+/// and velocity are uniform.
+template <int D>
+struct Fluid {
+  double temperature = 293.15;     ///< [K]
+  Vec<D> velocity = Vec<D>::Zero(); ///< [m/s]
+  double density = 0.0;            ///< [kg/m^3]
+  double viscosity = 0.0;          ///< dynamic viscosity [Pa s]
+  double conductivity = 0.0;       ///< [W/(m K)]
+  double heat_capacity = 0.0;      ///< [J/(kg K)]
+
+  void validate() const {
+    detail::require_finite("Fluid", "temperature", temperature);
+    detail::require(temperature >= 0.0, "Fluid", "temperature", temperature, "[0, inf) K");
+    for (int d = 0; d < D; ++d) detail::require_finite("Fluid", "velocity component", velocity[d]);
+    detail::require_non_negative("Fluid", "density", density);
+    detail::require_non_negative("Fluid", "viscosity", viscosity);
+    detail::require_non_negative("Fluid", "conductivity", conductivity);
+    detail::require_non_negative("Fluid", "heat_capacity", heat_capacity);
+  }
+};
+
 /// Optional per-pair overrides of the mixed values (negative = use the mixing rule).
 struct PairOverride {
   double restitution = -1.0;
@@ -76,6 +100,13 @@ struct PairProperties {
   double friction_static = 0.0; ///< static friction coefficient (>= dynamic)
   double rolling_friction = 0.0;
   double conductivity_eff = 0.0; ///< k1 k2/(k1 + k2) [W/(m K)]
+  double conductivity_i = 0.0;   ///< k1 of the first material (particle i) [W/(m K)]
+  double conductivity_j = 0.0;   ///< k2 of the second material (particle j or wall) [W/(m K)]
+  double heat_capacity_i = 0.0;  ///< c1 [J/(kg K)]
+  double heat_capacity_j = 0.0;  ///< c2 [J/(kg K)]
+  double density_i = 0.0;        ///< rho1 [kg/m^3]
+  double density_j = 0.0;        ///< rho2 [kg/m^3]
+  double fluid_conductivity = 0.0; ///< k_f of the interstitial fluid [W/(m K)] (set by the simulation)
 
   /// beta = ln e / sqrt(ln^2 e + pi^2), in (-1, 0]: the damping ratio that gives restitution e
   /// for a linear spring-dashpot is -beta.
@@ -102,6 +133,12 @@ struct PairProperties {
         o.rolling_friction >= 0 ? o.rolling_friction : 0.5 * (a.rolling_friction + b.rolling_friction);
     const double ks = a.conductivity + b.conductivity;
     p.conductivity_eff = ks > 0 ? a.conductivity * b.conductivity / ks : 0.0;
+    p.conductivity_i = a.conductivity;
+    p.conductivity_j = b.conductivity;
+    p.heat_capacity_i = a.heat_capacity;
+    p.heat_capacity_j = b.heat_capacity;
+    p.density_i = a.density;
+    p.density_j = b.density;
     return p;
   }
 };

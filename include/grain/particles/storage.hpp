@@ -50,13 +50,39 @@ struct ParticleArrays {
     apply(material, perm);
   }
 
-private:
+protected:
   template <class T>
   static void apply(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
     std::vector<T> out(v.size());
     for (std::size_t k = 0; k < perm.size(); ++k) out[k] = v[perm[k]];
     v.swap(out);
   }
+};
+
+/// Per-particle fields of a simulation with heat transfer: the mechanical fields plus the
+/// thermal state. A purely mechanical simulation uses `ParticleArrays` and has none of these.
+template <int D>
+struct ThermalParticleArrays : ParticleArrays<D> {
+  std::vector<double> temperature;       ///< [K]
+  std::vector<double> heat_rate;         ///< net heat flow into the particle this step [W]
+  std::vector<double> heat_capacity;     ///< thermal inertia C = m c [J/K]
+  std::vector<double> inv_heat_capacity; ///< 1/C [K/J]; 0 for a particle at fixed temperature
+
+  /// Reorders every field so that new index k holds old index perm[k].
+  void permute(const std::vector<std::uint32_t>& perm) {
+    ParticleArrays<D>::permute(perm);
+    this->apply(temperature, perm);
+    this->apply(heat_rate, perm);
+    this->apply(heat_capacity, perm);
+    this->apply(inv_heat_capacity, perm);
+  }
+};
+
+/// True for particle storage with a thermal state.
+template <class P>
+concept HasTemperature = requires(const P& p) {
+  p.temperature;
+  p.heat_rate;
 };
 
 } // namespace grain

@@ -8,12 +8,20 @@
 /// triangle centroid). A rotating circle does not change its geometry but drags particles with
 /// its surface velocity (a rotating drum). Wall velocities are constant in time here; time
 /// functions are added by the conditions layer.
+///
+/// Thermally a wall is insulated (the default: no heat crosses it) or held at a temperature [K]
+/// given as a `TimeFunction` (a constant, a ramp, a table...). It has no thermal inertia: while
+/// the function is inactive the wall keeps its last temperature. A conducting wall exchanges heat
+/// through its material's conductivity.
 
 #include <grain/core/error.hpp>
+#include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -51,6 +59,8 @@ struct WallOptions {
   Angular<D> omega = zero<Angular<D>>();      ///< angular velocity about the pivot [rad/s]
   bool has_pivot = false;                     ///< if true, rotate about `pivot`
   Vec<D> pivot = Vec<D>::Zero();              ///< centre of rotation [m]
+  /// Temperature [K] (constant or a time function); empty = thermally insulated.
+  std::optional<TimeFunction> temperature{};
 };
 
 template <int D>
@@ -106,6 +116,17 @@ struct Wall {
   WallOptions<D> options;
   Vec<D> pivot = Vec<D>::Zero();
   WallGeometry<D> snapshot; ///< geometry at the last neighbour-list rebuild
+  double temperature = std::numeric_limits<double>::quiet_NaN(); ///< current temperature [K]
+
+  /// True if heat crosses the wall (it has a temperature).
+  bool conducts() const { return options.temperature.has_value(); }
+
+  /// Sets the current temperature at time t [s] (kept while the function is inactive).
+  void update_temperature(double t) {
+    if (!options.temperature) return;
+    const TimeFunction& f = *options.temperature;
+    if (f.active(t) || std::isnan(temperature)) temperature = f.value(t);
+  }
 
   static constexpr double inf = std::numeric_limits<double>::infinity();
 
@@ -201,6 +222,10 @@ struct Wall {
         geometry);
     detail::require(all_finite(options.velocity), obj, "velocity", "(non-finite)", "finite");
     detail::require(all_finite(options.omega), obj, "omega", "(non-finite)", "finite");
+    if (options.temperature) {
+      const double t0 = options.temperature->value(0.0);
+      detail::require(std::isfinite(t0) && t0 >= 0.0, obj, "temperature", t0, "[0, inf) K");
+    }
   }
 
   /// Default pivot of a geometry.

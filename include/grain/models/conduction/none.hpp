@@ -1,6 +1,6 @@
 #pragma once
 /// \file none.hpp
-/// No heat conduction: a purely mechanical simulation (no thermal arrays are allocated).
+/// No heat conduction: a purely mechanical simulation (particles carry no thermal arrays).
 
 #include <grain/models/concepts.hpp>
 

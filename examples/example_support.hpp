@@ -1,0 +1,43 @@
+#pragma once
+/// \file example_support.hpp
+/// What the example programs share: a portable random-number sequence and the command line
+/// "[end_time_s] [output_dir]".
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+namespace example {
+
+/// Deterministic pseudo-random numbers in [0, 1) (splitmix64): the same sequence on every
+/// platform and compiler.
+struct Random {
+  std::uint64_t state;
+  double uniform() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+};
+
+/// Reads the optional arguments [end_time_s > 0] [output_dir] into `end_time` and `out_dir`
+/// (which hold the defaults). Prints the usage of program `name` and returns false on bad input.
+inline bool parse_arguments(int argc, char** argv, const char* name, double& end_time,
+                            std::filesystem::path& out_dir) {
+  bool ok = argc <= 3;
+  if (ok && argc > 1) {
+    char* rest = nullptr;
+    end_time = std::strtod(argv[1], &rest);
+    ok = rest != argv[1] && *rest == '\0' && end_time > 0.0 && std::isfinite(end_time);
+  }
+  if (ok && argc > 2) out_dir = argv[2];
+  if (!ok) std::fprintf(stderr, "usage: %s [end_time_s > 0] [output_dir]\n", name);
+  return ok;
+}
+
+} // namespace example
