@@ -1,9 +1,10 @@
-// Whole simulation steps of the benchmark cases; reports particle-steps per second.
+// Whole simulation steps of the benchmark cases; reports particle-steps per second. settle3d and
+// thermal3d (the same mechanics plus heat conduction) side by side give the cost of conduction.
 #include "cases.hpp"
 #include <benchmark/benchmark.h>
 
-static void settle3d(benchmark::State& state, int nx, int ny, int nz, int warm) {
-  auto sim = grain::bench::make_settle3d(nx, ny, nz);
+template <class Sim>
+static void run_steps(benchmark::State& state, Sim& sim, int warm) {
   sim.steps(warm);
   long steps = 0;
   for (auto _ : state) {
@@ -17,8 +18,27 @@ static void settle3d(benchmark::State& state, int nx, int ny, int nz, int warm) 
   state.counters["contacts"] = static_cast<double>(pp);
 }
 
+static void settle3d(benchmark::State& state, int nx, int ny, int nz, int warm) {
+  auto sim = grain::bench::make_settle3d(nx, ny, nz);
+  run_steps(state, sim, warm);
+}
+
+static void thermal3d(benchmark::State& state, int nx, int ny, int nz, int warm) {
+  auto sim = grain::bench::make_thermal3d(nx, ny, nz);
+  run_steps(state, sim, warm);
+}
+
 BENCHMARK_CAPTURE(settle3d, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(settle3d, N1e4, 25, 25, 16, 1000)->Unit(benchmark::kMillisecond)->MinTime(2.0);
-BENCHMARK_CAPTURE(settle3d, N1e5, 50, 50, 40, 1000)->Unit(benchmark::kMillisecond)->MinTime(4.0);
+BENCHMARK_CAPTURE(thermal3d, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
+// A fixed number of steps, so that settle3d and thermal3d time the same motion; three repetitions
+// (compare the medians: the machine is noisy).
+BENCHMARK_CAPTURE(settle3d, N1e4, 25, 25, 16, 1000)
+    ->Unit(benchmark::kMillisecond)->Iterations(2000)->Repetitions(3);
+BENCHMARK_CAPTURE(thermal3d, N1e4, 25, 25, 16, 1000)
+    ->Unit(benchmark::kMillisecond)->Iterations(2000)->Repetitions(3);
+BENCHMARK_CAPTURE(settle3d, N1e5, 50, 50, 40, 1000)
+    ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
+BENCHMARK_CAPTURE(thermal3d, N1e5, 50, 50, 40, 1000)
+    ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
 
 BENCHMARK_MAIN();

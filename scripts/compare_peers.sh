@@ -5,10 +5,12 @@
 # particle, and the end-of-run figures of every run side by side.
 #
 # Usage: scripts/compare_peers.sh [options] [CASE [SIZE | NX NY [NZ] NWARM NRUN]]
-#   CASE   settle3d (default) or pack2d
-#   SIZE   1e4 (default) or 1e5, and 1e6 for settle3d: lattice and step counts of the case
-#          definition (settle3d 1e4 = 25 25 16, NWARM 1000, NRUN 4000)
-#   NX NY [NZ] NWARM NRUN   any other lattice and step counts (NZ for settle3d only)
+#   CASE   settle3d (default), pack2d or thermal3d (settle3d with heat conduction; LIGGGHTS only
+#          among the peers, and the conduction overhead of grain and LIGGGHTS over settle3d
+#          measured in the same run)
+#   SIZE   1e4 (default) or 1e5, and 1e6 for settle3d and thermal3d: lattice and step counts of
+#          the case definition (settle3d 1e4 = 25 25 16, NWARM 1000, NRUN 4000)
+#   NX NY [NZ] NWARM NRUN   any other lattice and step counts (NZ for the 3D cases only)
 # Options:
 #   --peers DIR   folder with the peer inputs liggghts-CASE.in and lammps-CASE.in
 #                 (default: $GRAIN_PEERS_DIR, else shared/peers in the folder that holds the
@@ -27,7 +29,7 @@ peers=${GRAIN_PEERS_DIR:-$repo/../shared/peers}
 build=$repo/build-peers
 codes=grain,liggghts,lammps
 
-usage() { sed -n '2,22p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 die() { echo "compare_peers: $*" >&2; exit 2; }
 
 args=()
@@ -45,15 +47,19 @@ done
 case_name=${args[0]:-settle3d}
 size=("${args[@]:1}")
 case $case_name in
-  settle3d) dims=3 ;;
+  settle3d|thermal3d) dims=3 ;;
   pack2d) dims=2 ;;
-  *) die "unknown case '$case_name' (settle3d or pack2d)" ;;
+  *) die "unknown case '$case_name' (settle3d, pack2d or thermal3d)" ;;
 esac
+if [ "$case_name" = thermal3d ] && [[ ,$codes, == *,lammps,* ]] && [ ! -f "$peers/lammps-thermal3d.in" ]; then
+  echo "compare_peers: no LAMMPS input for thermal3d; comparing with LIGGGHTS only"
+  codes=$(echo ",$codes," | sed 's/,lammps,/,/; s/^,//; s/,$//')
+fi
 if [ ${#size[@]} -le 1 ]; then
   case $case_name:${size[0]:-1e4} in
-    settle3d:1e4) size=(25 25 16 1000 4000) ;;
-    settle3d:1e5) size=(50 50 40 1000 2000) ;;
-    settle3d:1e6) size=(100 100 100 200 300) ;;
+    settle3d:1e4|thermal3d:1e4) size=(25 25 16 1000 4000) ;;
+    settle3d:1e5|thermal3d:1e5) size=(50 50 40 1000 2000) ;;
+    settle3d:1e6|thermal3d:1e6) size=(100 100 100 200 300) ;;
     pack2d:1e4) size=(125 80 1000 4000) ;;
     pack2d:1e5) size=(400 250 1000 2000) ;;
     *) die "unknown size '${size[0]}' for $case_name (1e4, 1e5$([ "$dims" = 3 ] && echo ', 1e6'))" ;;
@@ -98,7 +104,7 @@ if want grain; then
   echo "building grain's case programs in $build"
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGRAIN_BUILD_TESTS=OFF \
     -DGRAIN_BUILD_EXAMPLES=OFF -DGRAIN_BUILD_BENCHMARKS=ON >/dev/null
-  cmake --build "$build" -j2 --target case_settle3d case_pack2d >/dev/null
+  cmake --build "$build" -j2 --target case_settle3d case_pack2d case_thermal3d >/dev/null
 fi
 mkdir -p "$build/runs"
 run_dir=$(mktemp -d "$build/runs/$case_name-N$n-XXXXXX")
@@ -107,11 +113,12 @@ run_dir=$(mktemp -d "$build/runs/$case_name-N$n-XXXXXX")
 # Every run writes run_dir/<code>-<p>.out (its output), .log (peers' log file) and .time
 # (/usr/bin/time -v); one line per run goes to run_dir/results:
 # code p rate loop_seconds rss_kb load1 atoms contacts ke rke mean_height cpu_percent, then
-# contacts ke rke mean_height after the warm-up steps
+# contacts ke rke mean_height after the warm-up steps, then dT_hot dT_cold (thermal3d; 0 otherwise)
 results=$run_dir/results
 : >"$results"
 failed=0
 load1() { cut -d' ' -f1 /proc/loadavg; }
+suffix() { if [ "$1" != "$case_name" ]; then echo "-$1"; fi; } # file suffix of a side run
 rss_kb() { awk -F': ' '/Maximum resident set size/ {print $2}' "$1"; }
 cpu_percent() { awk -F': ' '/Percent of CPU this job got/ {sub("%", "", $2); print $2}' "$1"; }
 vars=(-var NX "$nx" -var NY "$ny")
@@ -121,47 +128,52 @@ grain_args=("$nx" "$ny")
 [ "$dims" = 3 ] && grain_args+=("$nz")
 grain_args+=("$nwarm" "$nrun")
 
-run_grain() { # threads
-  local t=$1 base=$run_dir/grain-$1 load
+run_grain() { # threads [case, default the compared one]
+  local t=$1 c=${2:-$case_name} base load
+  base=$run_dir/grain-$1$(suffix "$c")
   load=$(load1)
-  echo "grain, $t thread(s) ..."
+  echo "grain $c, $t thread(s) ..."
   if ! OMP_NUM_THREADS=$t /usr/bin/time -v -o "$base.time" \
-      "$build/bench/case_$case_name" "${grain_args[@]}" >"$base.out" 2>&1; then
+      "$build/bench/case_$c" "${grain_args[@]}" >"$base.out" 2>&1; then
     echo "  failed; see $base.out" >&2
     failed=1
     return 0
   fi
   awk -v p="$t" -v rss="$(rss_kb "$base.time")" -v load="$load" -v cpu="$(cpu_percent "$base.time")" '
     { v[$1] = $2 }
-    END { printf "grain %s %s %s %s %s %s %s %s %s %s %s %s %s %s %s\n", p, v["particle_steps_per_s"],
+    END { printf "grain %s %s %s %s %s %s %s %s %s %s %s %s %s %s %s %s %s\n", p, v["particle_steps_per_s"],
           v["run_seconds"], rss, load, v["N"], v["contacts"], v["ke"], v["rke"], v["mean_height"], cpu,
-          v["warm_contacts"], v["warm_ke"], v["warm_rke"], v["warm_mean_height"] }
-  ' "$base.out" >>"$results"
+          v["warm_contacts"], v["warm_ke"], v["warm_rke"], v["warm_mean_height"],
+          v["dT_hot"] + 0, v["dT_cold"] + 0 }
+  ' "$base.out" >>"$results$(suffix "$c")"
 }
 
-run_peer() { # code (liggghts | lammps) ranks
-  local code=$1 p=$2 base=$run_dir/$1-$2 exe load cmd
+run_peer() { # code (liggghts | lammps) ranks [case, default the compared one]
+  local code=$1 p=$2 c=${3:-$case_name} base exe load cmd
+  base=$run_dir/$1-$2$(suffix "$c")
   case $code in liggghts) exe=liggghts ;; lammps) exe=lmp ;; esac
-  cp "$peers/$code-$case_name.in" "$run_dir/$code-$case_name.in"
-  cmd=("$exe" -in "$code-$case_name.in" "${vars[@]}" -log "$base.log")
+  cp "$peers/$code-$c.in" "$run_dir/$code-$c.in"
+  cmd=("$exe" -in "$code-$c.in" "${vars[@]}" -log "$base.log")
   [ "$p" -gt 1 ] && cmd=(mpirun --allow-run-as-root --oversubscribe -np "$p" "${cmd[@]}")
   load=$(load1)
-  echo "$code, $p rank(s) ..."
+  echo "$code $c, $p rank(s) ..."
   if ! (cd "$run_dir" && OMP_NUM_THREADS=1 /usr/bin/time -v -o "$base.time" "${cmd[@]}" \
       >"$base.out" 2>&1 </dev/null); then
     echo "  failed; see $base.out" >&2
     failed=1
     return 0
   fi
-  # thermo rows: Step Atoms ke rke ncont height CPU; the end of the run is the last row before the
-  # second "Loop time" line, the end of the warm-up the first row of step NWARM (the repeated row
-  # at the start of the second run can differ: LAMMPS' contact/atom then counts fewer contacts)
+  # thermo rows: Step Atoms ke rke ncont height ... CPU; the timed run is the last one (an input
+  # may start with "run 0"), its end the last row before the last "Loop time" line; the end of the
+  # warm-up is the first row of step NWARM (the repeated row at the start of the next run can
+  # differ: LAMMPS' contact/atom then counts fewer contacts)
   awk -v code="$code" -v p="$p" -v n="$n" -v nwarm="$nwarm" -v nrun="$nrun" \
-      -v rss="$(rss_kb "$base.time")" -v load="$load" \
+      -v rss="$(rss_kb "$base.time")" -v load="$load" -v thermal="$(if [ "$c" = thermal3d ]; then echo 1; else echo 0; fi)" \
       -v cpu="$(cpu_percent "$base.time")" '
     $1 == "Step" { thermo = 1; next }
     /^Loop time of/ {
-      if (++loops == 2) { loop = $4; atoms = r[2]; nc = r[5]; ke = r[3]; rke = r[4]; h = r[6] }
+      ++loops; loop = $4; atoms = r[2]; nc = r[5]; ke = r[3]; rke = r[4]; h = r[6]
+      dth = thermal ? r[7] : 0; dtc = thermal ? r[8] : 0
       thermo = 0; next
     }
     thermo && $1 ~ /^[0-9]+$/ && NF >= 7 {
@@ -170,22 +182,27 @@ run_peer() { # code (liggghts | lammps) ranks
     }
     END {
       if (loops < 2) exit 1
-      printf "%s %s %.6g %s %s %s %s %s %s %s %s %s %s %s %s %s\n", code, p, n * nrun / loop, loop,
-             rss, load, atoms, nc, ke, rke, h, cpu, wnc, wke, wrke, wh
+      printf "%s %s %.6g %s %s %s %s %s %s %s %s %s %s %s %s %s %s %s\n", code, p, n * nrun / loop, loop,
+             rss, load, atoms, nc, ke, rke, h, cpu, wnc, wke, wrke, wh, dth, dtc
     }
-  ' "$base.log" >>"$results" || { echo "  no timed run in $base.log" >&2; failed=1; }
+  ' "$base.log" >>"$results$(suffix "$c")" || { echo "  no timed run in $base.log" >&2; failed=1; }
 }
 
 echo "case $case_name, N = $n (${size[*]}), logs in $run_dir"
 want grain && { run_grain 1; run_grain 2; }
 want liggghts && { run_peer liggghts 1; run_peer liggghts 2; }
 want lammps && { run_peer lammps 1; run_peer lammps 2; }
+if [ "$case_name" = thermal3d ]; then
+  # the same mechanics without conduction, one thread / rank, for the overhead of conduction
+  want grain && run_grain 1 settle3d
+  want liggghts && [ -f "$peers/liggghts-settle3d.in" ] && run_peer liggghts 1 settle3d
+fi
 load_end=$(load1)
 
 # ------------------------------------------------------------------ report
 bit_identical=n/a
 if [ -f "$run_dir/grain-1.out" ] && [ -f "$run_dir/grain-2.out" ]; then
-  fig='^(warm_)?(contacts|ke|rke|mean_height) '
+  fig='^(warm_)?(contacts|ke|rke|mean_height|dT_hot|dT_cold) '
   if grep -qE "$fig" "$run_dir/grain-1.out" &&
      diff <(grep -E "$fig" "$run_dir/grain-1.out") <(grep -E "$fig" "$run_dir/grain-2.out") >/dev/null; then
     bit_identical=yes
@@ -202,7 +219,7 @@ echo
 awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" '
   { code[NR] = $1; p[NR] = $2; rate[NR] = $3; rss[NR] = $5; load[NR] = $6; atoms[NR] = $7
     nc[NR] = $8; ke[NR] = $9; rke[NR] = $10; h[NR] = $11; cpu[NR] = $12
-    wnc[NR] = $13; wke[NR] = $14; wrke[NR] = $15; wh[NR] = $16
+    wnc[NR] = $13; wke[NR] = $14; wrke[NR] = $15; wh[NR] = $16; dth[NR] = $17; dtc[NR] = $18
     if ($1 == "grain") grain[$2] = $3
     else if (!($2 in best) || $3 > best[$2]) best[$2] = $3
     if ($1 == "liggghts" && $2 == 1) ref = NR }
@@ -241,6 +258,23 @@ awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" '
       printf "grain 2 threads / faster peer on 2 ranks: %.2f\n", grain[2] / best[2]
     if ((1 in grain) && (2 in grain))
       printf "grain 2 threads / 1 thread: %.2f; end-of-run figures bit-identical: %s\n", grain[2] / grain[1], identical
+    if (thermal) {
+      print ""
+      print "Mean temperature changes of the initially hot (400 K) and cold (300 K) groups:"
+      print ""
+      print "| code | threads / ranks | dT_hot [K] | dT_cold [K] |"
+      print "|---|---|---|---|"
+      for (k = 1; k <= NR; ++k) printf "| %s | %s | %.6g | %.6g |\n", name(code[k]), p[k], dth[k], dtc[k]
+    }
   }
-' "$results"
+' thermal="$([ "$case_name" = thermal3d ] && echo 1 || echo 0)" "$results"
+if [ "$case_name" = thermal3d ] && [ -f "$results-settle3d" ]; then
+  echo
+  awk '{ rate[$1] = $3 } END { for (c in rate) print c, rate[c] }' "$results-settle3d" | sort >"$run_dir/settle3d-rates"
+  awk '$2 == 1 { print $1, $3 }' "$results" | sort >"$run_dir/thermal3d-rates"
+  join "$run_dir/settle3d-rates" "$run_dir/thermal3d-rates" | awk '
+    { printf "conduction overhead, %s 1 %s: settle3d %.3e, thermal3d %.3e particle-steps/s: %+.1f %%\n",
+             $1 == "grain" ? "grain" : "LIGGGHTS", $1 == "grain" ? "thread" : "rank", $2, $3,
+             100 * ($2 / $3 - 1) }'
+fi
 exit $failed

@@ -36,10 +36,18 @@ inline void print_figures(const char* prefix, const Figures& f) {
   std::printf("%smean_height %.17g\n", prefix, f.mean_height);
 }
 
-/// Runs `nwarm` untimed and `nrun` timed steps and prints the report; returns the exit status
+/// Prints nothing more (the default of run_case's `extra`).
+struct NoExtra {
+  template <class Sim>
+  void operator()(const Sim&, const char*) const {}
+};
+
+/// Runs `nwarm` untimed and `nrun` timed steps and prints the report; `extra(sim, prefix)` prints
+/// case-specific figures after the warm-up ("warm_") and at the end (""). Returns the exit status
 /// (1 if a particle has left the box `lo`..`hi` or is not finite).
-template <class Sim>
-int run_case(Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi, long nwarm, long nrun) {
+template <class Sim, class Extra = NoExtra>
+int run_case(Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi, long nwarm, long nrun,
+             Extra extra = {}) {
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
@@ -52,6 +60,7 @@ int run_case(Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi, long nwarm,
   std::printf("time_step %.17g\n", sim.time_step());
   sim.steps(nwarm);
   print_figures("warm_", figures(sim, lo, hi));
+  extra(sim, "warm_");
   const long rebuilds0 = sim.counters().rebuilds;
   const auto t0 = std::chrono::steady_clock::now();
   sim.steps(nrun);
@@ -63,6 +72,7 @@ int run_case(Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi, long nwarm,
               static_cast<double>(sim.size()) * static_cast<double>(nrun) / seconds);
   std::printf("neighbor_rebuilds %ld\n", sim.counters().rebuilds - rebuilds0);
   print_figures("", f);
+  extra(sim, "");
   std::printf("particles_outside %zu\n", f.outside);
   return f.outside == 0 ? 0 : 1;
 }

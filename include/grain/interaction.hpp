@@ -180,7 +180,9 @@ struct Interaction {
     if constexpr (thermal) {
       const double a = area_model::radius(g, pair, n, p.area);
       const HeatContext c{.contact_radius = a,
-                          .distance = consistent_distance(g, a),
+                          .distance = uses_consistent_distance<conduction_model>
+                                          ? consistent_distance(g, a)
+                                          : 0.0,
                           .gap = 0.0,
                           .cell_radius = cell_radius,
                           .length = length,

@@ -219,6 +219,9 @@ public:
                        "[0, 1]");
     ConvectionT::validate(params_.convection);
     CellSizeT::validate(params_.cells);
+    if constexpr (Contact::indirect)
+      detail::require_positive("Fluid (conduction through the fluid)", "conductivity",
+                               params_.fluid.conductivity);
     if constexpr (ConvectionT::active) {
       detail::require_positive("Fluid (convection)", "viscosity", params_.fluid.viscosity);
       detail::require_positive("Fluid (convection)", "density", params_.fluid.density);
@@ -391,19 +394,23 @@ public:
   }
 
   /// Stability limit of the explicit temperature update over the contacts of the current
-  /// neighbour list (after initialisation): min over particles of C_i / sum_j H_ij [s].
+  /// neighbour list (after initialisation; infinite before): min over particles of
+  /// C_i / (sum_j H_ij + h_i S_i / 2) [s], h_i S_i the convective conductance.
   /// Forward Euler is stable for dt < 2/lambda_max, lambda_max the largest eigenvalue of
   /// C^-1 L (L the conductance Laplacian); by Gershgorin's theorem lambda_max <= max_i
   /// 2 sum_j H_ij / C_i, so this bound is sufficient, and it is exact for two particles.
   double conduction_time_step() const {
     double t = std::numeric_limits<double>::infinity();
     if constexpr (thermal) {
-      if (list_.rows() != particles_.size()) return t;
+      if (list_.rows() != particles_.size() || !heats()) return t;
       std::vector<double> h(particles_.size(), 0.0);
       for_each_conductance([&](std::size_t i, std::size_t j, bool wall, double H) {
         h[i] += H;
         if (!wall) h[j] += H;
       });
+      // convection adds h S to the diagonal of C^-1 L only: half of it to the row sum
+      if constexpr (ConvectionT::active)
+        for (std::size_t i = 0; i < h.size(); ++i) h[i] += 0.5 * convection_conductance(i);
       for (std::size_t i = 0; i < h.size(); ++i)
         if (h[i] > 0) t = std::min(t, particles_.heat_capacity[i] / h[i]);
     }
@@ -502,6 +509,8 @@ public:
     if (!initialized_) initialize();
     const auto t0 = std::chrono::steady_clock::now();
     const double dt = dt_;
+    if constexpr (thermal)
+      for (auto& w : walls_) w.update_temperature(time_);
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
         integrate_before(dt);
@@ -521,7 +530,7 @@ public:
     ++step_;
     time_ = static_cast<double>(step_) * dt_ + time_offset_;
     if constexpr (thermal)
-      for (auto& w : walls_) w.update_temperature(time_);
+      for (auto& w : walls_) w.update_temperature(time_); // current for output and queries
     counters_.steps += 1;
     counters_.particle_steps += static_cast<double>(particles_.size());
     counters_.wall_seconds +=
@@ -608,16 +617,26 @@ public:
 
   /// Visits the conductance of every conducting pair of the current list without changing any
   /// state: f(i, j_or_wall, is_wall, H).
+  /// In a thermal analysis the contacts are at rest (particles never move, whatever velocities
+  /// they were given).
   template <class F>
   void for_each_conductance(F&& f) const {
     if constexpr (thermal) {
       const auto& p = particles_;
       ContactGeometry<D> g;
+      const bool rest = !moves();
+      auto at_rest = [&](ContactGeometry<D>& c) {
+        if (!rest) return;
+        c.velocity = c.tangential_velocity = c.slip_velocity = V::Zero();
+        c.normal_velocity = 0.0;
+        c.omega_rel = c.slip_omega_rel = zero<A>();
+      };
       for (std::size_t i = 0; i < p.size(); ++i) {
         for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
           const auto j = list_.partners[e];
           double H = 0.0;
           if (touching_pair(i, j, g)) {
+            at_rest(g);
             const auto& pair = pair_properties(p.material[i], p.material[j]);
             History h = history_at(history_, e);
             auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
@@ -633,6 +652,7 @@ public:
           if (!walls_[w].conducts()) continue;
           double H = 0.0;
           if (touching_wall(i, w, g)) {
+            at_rest(g);
             const auto& pair = pair_properties(p.material[i], walls_[w].options.material);
             History h = history_at(wall_history_, e);
             auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
@@ -995,7 +1015,7 @@ private:
       const auto& p = particles_;
       auto r = CellSizeT::template compute<D>(
           params_.cells, std::span<const V>(p.position.data(), p.size()),
-          std::span<const double>(p.radius.data(), p.size()), list_, walls_);
+          std::span<const double>(p.radius.data(), p.size()), list_, walls_, cutoff_);
       cell_pair_ = std::move(r.pair);
       cell_wall_ = std::move(r.wall);
       steps_since_cells_ = 0;
@@ -1004,6 +1024,7 @@ private:
   void maybe_update_cells() {
     if constexpr (Contact::needs_cell_radius) {
       const long f = params_.cells.update_frequency;
+      if (steps_since_rebuild_ == 0) return; // the rebuild has just updated them
       if (f > 0 && ++steps_since_cells_ >= f) update_cells();
     }
   }
@@ -1026,12 +1047,16 @@ private:
     else
       return 0.0;
   }
+  /// Fluid-cell radius of list entry e (infinite, i.e. no cell, when the radii were not computed:
+  /// a mechanical analysis of a thermal contact).
   double cell_radius_pair(std::size_t e) const {
-    if constexpr (Contact::needs_cell_radius) return cell_pair_[e];
+    if constexpr (Contact::needs_cell_radius)
+      return e < cell_pair_.size() ? cell_pair_[e] : std::numeric_limits<double>::infinity();
     else { (void)e; return std::numeric_limits<double>::infinity(); }
   }
   double cell_radius_wall(std::size_t e) const {
-    if constexpr (Contact::needs_cell_radius) return cell_wall_[e];
+    if constexpr (Contact::needs_cell_radius)
+      return e < cell_wall_.size() ? cell_wall_[e] : std::numeric_limits<double>::infinity();
     else { (void)e; return std::numeric_limits<double>::infinity(); }
   }
   /// Conductance across the gap of a pair that does not touch (0 beyond the cutoff).
@@ -1059,22 +1084,32 @@ private:
         h, dt_, length(), cell_radius_wall(e));
   }
 
-  /// Heat exchanged with the fluid: Q = h S (T_f - T), h = Nu k_f / (2R).
+  /// Convective conductance h S [W/K] of particle i: h = Nu(Re, Pr) k_f / (2R), S its surface.
+  double convection_conductance(std::size_t i) const {
+    if constexpr (ConvectionT::active) {
+      const auto& f = params_.fluid;
+      const double pr = f.viscosity * f.heat_capacity / f.conductivity;
+      const double dia = 2.0 * particles_.radius[i];
+      const V v = moves() && force_velocity().size() == particles_.size() ? force_velocity()[i]
+                                                                           : V(V::Zero());
+      const double re = f.density * dia * (f.velocity - v).norm() / f.viscosity;
+      const double h = ConvectionT::nusselt(re, pr, params_.convection) * f.conductivity / dia;
+      return h * shape_.surface(particles_.radius[i]);
+    } else {
+      (void)i;
+      return 0.0;
+    }
+  }
+
+  /// Heat exchanged with the fluid: Q = h S (T_f - T).
   void add_convection() {
     if constexpr (thermal && ConvectionT::active) {
       auto& p = particles_;
-      const auto& f = params_.fluid;
-      const double pr = f.viscosity * f.heat_capacity / f.conductivity;
-      const bool still = !moves();
+      const double tf = params_.fluid.temperature;
       const long n = static_cast<long>(p.size());
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) {
-        const double dia = 2.0 * p.radius[i];
-        const V rel = still ? V(f.velocity) : V(f.velocity - force_velocity()[i]);
-        const double re = f.density * dia * rel.norm() / f.viscosity;
-        const double h = ConvectionT::nusselt(re, pr, params_.convection) * f.conductivity / dia;
-        p.heat_rate[i] += h * shape_.surface(p.radius[i]) * (f.temperature - p.temperature[i]);
-      }
+      for (long i = 0; i < n; ++i)
+        p.heat_rate[i] += convection_conductance(static_cast<std::size_t>(i)) * (tf - p.temperature[i]);
     }
   }
 

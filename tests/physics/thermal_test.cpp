@@ -498,3 +498,24 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
     CHECK(H == grain::test::approx(1.63679e-4).epsilon(5e-6));
   }
 }
+
+TEST_CASE("a thermal analysis sees its contacts at rest: the collisional model gives the static "
+          "conductance whatever velocities the particles were given") {
+  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
+                              conduction::Collisional>;
+  using Sim = Simulation<Sphere, search::AllPairs, Contact>;
+  Sim::Params p;
+  p.analysis = Analysis::thermal;
+  p.time_step = 1.0;
+  Sim sim(p);
+  const auto m = sim.add_material(glass());
+  sim.add_particle({.position = {0, 0, 0}, .radius = 0.01, .material = m,
+                    .velocity = {1.0, 0, 0}, .temperature = 300});
+  sim.add_particle({.position = {0.02 - 1e-4, 0, 0}, .radius = 0.01, .material = m,
+                    .velocity = {-1.0, 0, 0}, .temperature = 400});
+  sim.initialize();
+  double H = 0;
+  sim.for_each_conductance([&](std::size_t, std::size_t, bool, double h) { H += h; });
+  // Batchelor-O'Brien with the Hertz radius: 2 k a, a = sqrt(R* delta)
+  CHECK(H == grain::test::approx(2.0 * std::sqrt(0.005 * 1e-4)).epsilon(1e-12));
+}

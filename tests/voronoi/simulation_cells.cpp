@@ -88,7 +88,7 @@ TEST_CASE("Voronoi B with global and local porosity cell sizes in 3D") {
   {
     // estimated global porosity of a simple-cubic block of whole cells: 1 - pi/6 ... of the
     // hull of the centres; r_ij = 0.56 R (1 - phi)^(-1/3) for every touching pair
-    using Sim = Simulation<Sphere, search::CellList, Contact, cells::GlobalPorosity>;
+    using Sim = Simulation<Sphere, search::CellList, Contact, cells::HullGlobalPorosity>;
     Sim::Params p;
     p.analysis = Analysis::thermal;
     p.fluid.conductivity = 0.026;
@@ -110,7 +110,7 @@ TEST_CASE("Voronoi B with global and local porosity cell sizes in 3D") {
   }
   {
     // local porosity: every pair conducts, with r_ij from the mean of the two local porosities
-    using Sim = Simulation<Sphere, search::CellList, Contact, cells::LocalPorosity>;
+    using Sim = Simulation<Sphere, search::CellList, Contact, cells::HullLocalPorosity>;
     Sim::Params p;
     p.analysis = Analysis::thermal;
     p.fluid.conductivity = 0.026;

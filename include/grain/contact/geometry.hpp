@@ -20,8 +20,8 @@
 ///   rolling springs).
 /// - A wall is a partner of infinite radius and mass: r_eff = R_i (flat), R_i R_w/(R_w -+ R_i)
 ///   for the inside/outside of a circle; m_eff = m_i.
-/// - `contact_radius` is the geometric radius of the intersection of the two undeformed bodies
-///   (the half chord of the lens), a = sqrt(R_i^2 - ((R_i^2 - R_j^2 + d^2)/(2 d))^2), or
+/// - `lens_contact_radius(g)` is the geometric radius of the intersection of the two undeformed
+///   bodies (the half chord of the lens), a = sqrt(R_i^2 - ((R_i^2 - R_j^2 + d^2)/(2 d))^2), or
 ///   sqrt(R_i^2 - d^2) for a flat wall. For small overlaps it is sqrt(2) times the Hertz radius
 ///   sqrt(r_eff delta); models that need the Hertz radius compute it from r_eff and overlap.
 
@@ -48,7 +48,6 @@ struct ContactGeometry {
   double radius_i = 0.0, radius_j = 0.0; ///< radius_j is infinite for a flat wall [m]
   double r_eff = 0.0;    ///< effective radius R* [m]
   double m_eff = 0.0;    ///< effective mass m* [kg]
-  double contact_radius = 0.0; ///< geometric contact radius [m]
   bool wall = false;
 };
 
@@ -85,7 +84,6 @@ inline void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>&
   g.radius_j = rj;
   g.r_eff = ri * rj / (ri + rj);
   g.m_eff = mi * mj / (mi + mj);
-  g.contact_radius = detail::lens_radius(ri, rj, dist);
   g.wall = false;
 }
 
@@ -111,22 +109,32 @@ inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const Wall
   if (std::isinf(w.curvature_radius)) {
     g.radius_j = w.curvature_radius;
     g.r_eff = r;
-    const double d = std::max(w.distance, 0.0);
-    g.contact_radius = std::sqrt(std::max(r * r - d * d, 0.0));
   } else {
     // circle wall: convex (> 0, particle outside) or concave (< 0, particle inside)
     const double rw = w.curvature_radius;
     g.radius_j = rw;
     g.r_eff = r * rw / (rw + r);
-    const double rc = std::abs(rw);
-    const double centre_distance = rw > 0 ? w.distance + rc : rc - w.distance;
-    g.contact_radius = centre_distance > 0 ? detail::lens_radius(r, rc, centre_distance) : r;
   }
   g.wall = true;
 }
 
+/// The half chord of the lens in which the undeformed bodies of a touching contact intersect [m]
+/// (flat wall: sqrt(R_i^2 - d^2); circle wall: the lens of the two circles).
+template <int D>
+inline double lens_contact_radius(const ContactGeometry<D>& g) {
+  const double r = g.radius_i;
+  if (!g.wall) return detail::lens_radius(r, g.radius_j, g.distance);
+  if (std::isinf(g.radius_j)) {
+    const double d = std::max(g.distance, 0.0);
+    return std::sqrt(std::max(r * r - d * d, 0.0));
+  }
+  const double rc = std::abs(g.radius_j);
+  const double centre_distance = g.radius_j > 0 ? g.distance + rc : rc - g.distance;
+  return centre_distance > 0 ? detail::lens_radius(r, rc, centre_distance) : r;
+}
+
 /// Geometry of two particles separated by a gap (for conduction across the gap): normal,
-/// distance, radii, r_eff, m_eff and overlap = -gap; no velocities, contact radius 0.
+/// distance, radii, r_eff, m_eff and overlap = -gap; no velocities.
 template <int D>
 inline void gap_pair_geometry(ContactGeometry<D>& g, const Vec<D>& n, double dist, double ri,
                               double rj, double mi, double mj) {
@@ -137,7 +145,6 @@ inline void gap_pair_geometry(ContactGeometry<D>& g, const Vec<D>& n, double dis
   g.radius_j = rj;
   g.r_eff = ri * rj / (ri + rj);
   g.m_eff = mi * mj / (mi + mj);
-  g.contact_radius = 0.0;
   g.normal_velocity = 0.0;
   g.wall = false;
 }
@@ -153,7 +160,6 @@ inline void gap_wall_geometry(ContactGeometry<D>& g, const WallProximity<D>& w, 
   g.radius_j = w.curvature_radius;
   g.r_eff = std::isinf(w.curvature_radius) ? r : r * w.curvature_radius / (w.curvature_radius + r);
   g.m_eff = m;
-  g.contact_radius = 0.0;
   g.normal_velocity = 0.0;
   g.wall = true;
 }

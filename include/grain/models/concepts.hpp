@@ -157,6 +157,16 @@ inline constexpr bool conducts_across_gaps = [] {
     return false;
 }();
 
+/// True unless the conduction model `M` declares `uses_distance = false`: it then does not read
+/// `HeatContext::distance`, and the consistent centre distance is not computed.
+template <class M>
+inline constexpr bool uses_consistent_distance = [] {
+  if constexpr (requires { M::uses_distance; })
+    return static_cast<bool>(M::uses_distance);
+  else
+    return true;
+}();
+
 /// True if the conduction model `M` needs the fluid-cell radius of each pair.
 template <class M>
 inline constexpr bool uses_cell_radius = [] {

@@ -462,14 +462,10 @@ inline CellRadii porosity_radii(std::span<const double> radius, double phi,
 
 
 // ------------------------------------------------------------------ simulation options
-/// Geometry a cell-size method needs in dimension D (specialised for 2D here and for 3D in
-/// voronoi.hpp, which needs qhull).
-template <int D>
-struct Hull {};
-
-template <>
-struct Hull<2> {
-  static constexpr bool available = true;
+/// Convex hulls of 2D packings (no qhull). 3D hulls are `QhullHulls` in voronoi.hpp.
+struct PlanarHulls {
+  template <int D>
+  static constexpr bool available = D == 2;
   static double global_porosity(std::span<const Vec2> x, std::span<const double> r) {
     return cells::global_porosity(x, r);
   }
@@ -480,19 +476,37 @@ struct Hull<2> {
 };
 
 namespace detail {
-template <int D>
-concept has_hull = requires { Hull<D>::available; };
-
 inline void require_frequency(const char* who, long f) {
   grain::detail::require(f >= 0, who, "update_frequency", f,
                          "[0, inf) steps (0 = at every neighbour-list rebuild)");
+}
+
+/// The pairs of `nl` closer than r_i + r_j + reach (the neighbours a local porosity counts: the
+/// list itself also holds pairs within the search skin).
+template <int D>
+NeighborList pairs_within(std::span<const Vec<D>> x, std::span<const double> r,
+                          const NeighborList& nl, double reach) {
+  NeighborList out;
+  out.clear(x.size());
+  for (std::size_t i = 0; i + 1 < nl.offsets.size(); ++i) {
+    for (auto e = nl.offsets[i]; e < nl.offsets[i + 1]; ++e) {
+      const auto j = nl.partners[e];
+      const double rs = r[i] + r[j] + reach;
+      if ((x[j] - x[i]).squaredNorm() < rs * rs) out.partners.push_back(j);
+    }
+    out.offsets.push_back(static_cast<std::uint32_t>(out.partners.size()));
+    out.wall_offsets.push_back(0);
+  }
+  return out;
 }
 } // namespace detail
 
 /// Cell-size method "global porosity" (a `Simulation` option for the Voronoi conduction models):
 /// r_ij = 0.56 R_ij (1 - phi)^(-1/3) with one porosity phi for the whole packing, given, or
-/// estimated from the convex hull of the particle centres (2D; in 3D with voronoi.hpp).
-struct GlobalPorosity {
+/// estimated from the convex hull of the particle centres by `Hulls` (2D: `GlobalPorosity`; 3D:
+/// `HullGlobalPorosity` of voronoi.hpp, with qhull).
+template <class Hulls>
+struct BasicGlobalPorosity {
   static constexpr bool cell_size_method = true;
   static constexpr const char* name = "global porosity";
   struct Params {
@@ -506,15 +520,16 @@ struct GlobalPorosity {
   }
   template <int D, class Walls>
   static CellRadii compute(const Params& p, std::span<const Vec<D>> x, std::span<const double> r,
-                           const NeighborList& nl, const Walls&) {
+                           const NeighborList& nl, const Walls&, double) {
     double phi = p.porosity;
     if (phi < 0.0) {
-      if constexpr (detail::has_hull<D>) {
-        phi = Hull<D>::global_porosity(x, r);
+      if constexpr (Hulls::template available<D>) {
+        phi = Hulls::global_porosity(x, r);
       } else {
         throw InputError("cells::GlobalPorosity: porosity = " + grain::detail::to_text(phi) +
                          " (estimate) needs the convex hull of a 3D packing; valid: a porosity in "
-                         "[0, 1), or include <grain/thermal/voronoi.hpp> and link grain::voronoi");
+                         "[0, 1), or cells::HullGlobalPorosity from <grain/thermal/voronoi.hpp> "
+                         "(link grain::voronoi)");
       }
     }
     return porosity_radii(r, phi, nl);
@@ -523,8 +538,10 @@ struct GlobalPorosity {
 
 /// Cell-size method "local porosity": r_ij = 0.56 R_ij (1 - phi_ij)^(-1/3), phi_ij the mean of
 /// the local porosities of i and j (the porosity of the convex hull of each particle and its
-/// neighbours; 3D needs voronoi.hpp).
-struct LocalPorosity {
+/// neighbours: the partners that touch it or lie within the conduction cutoff). 2D:
+/// `LocalPorosity`; 3D: `HullLocalPorosity` of voronoi.hpp (qhull).
+template <class Hulls>
+struct BasicLocalPorosity {
   static constexpr bool cell_size_method = true;
   static constexpr const char* name = "local porosity";
   struct Params {
@@ -534,18 +551,26 @@ struct LocalPorosity {
   static void validate(const Params& p) {
     detail::require_frequency("cells::LocalPorosity", p.update_frequency);
   }
+  /// `reach`: the conduction cutoff [m]; neighbours are the pairs closer than R_i + R_j + reach.
   template <int D, class Walls>
   static CellRadii compute(const Params& p, std::span<const Vec<D>> x, std::span<const double> r,
-                           const NeighborList& nl, const Walls&) {
-    static_assert(detail::has_hull<D>,
-                  "grain::cells::LocalPorosity in 3D needs convex hulls: include "
-                  "<grain/thermal/voronoi.hpp> and link grain::voronoi");
-    const auto phi = Hull<D>::local_porosity(x, r, nl, p.rule);
+                           const NeighborList& nl, const Walls&, double reach) {
+    static_assert(Hulls::template available<D>,
+                  "grain::cells::LocalPorosity works in 2D; in 3D use cells::HullLocalPorosity "
+                  "from <grain/thermal/voronoi.hpp> and link grain::voronoi");
+    const auto near = detail::pairs_within<D>(x, r, nl, reach);
+    const auto phi = Hulls::local_porosity(x, r, near, p.rule);
     return porosity_radii(r, phi, nl);
   }
 };
 
-/// A cell-size method: a type with `cell_size_method`, `Params`, `validate` and `compute`.
+/// Global porosity with 2D hulls (3D: a given porosity only).
+using GlobalPorosity = BasicGlobalPorosity<PlanarHulls>;
+/// Local porosity with 2D hulls.
+using LocalPorosity = BasicLocalPorosity<PlanarHulls>;
+
+/// A cell-size method: a type with `cell_size_method`, `Params` (with `update_frequency`),
+/// `validate` and `compute(params, positions, radii, list, walls, reach)`.
 template <class T>
 concept CellSizeMethod = requires {
   requires T::cell_size_method;

@@ -659,10 +659,12 @@ inline std::vector<double> local_porosity(std::span<const Vec3> x, std::span<con
 
 
 // ------------------------------------------------------------------ simulation options
-/// Convex hulls of 3D packings for the porosity cell-size methods (cells.hpp).
-template <>
-struct Hull<3> {
-  static constexpr bool available = true;
+/// Convex hulls of 2D (cells.hpp) and 3D (qhull) packings for the porosity cell-size methods.
+struct QhullHulls : PlanarHulls {
+  template <int D>
+  static constexpr bool available = D == 2 || D == 3;
+  using PlanarHulls::global_porosity;
+  using PlanarHulls::local_porosity;
   static double global_porosity(std::span<const Vec3> x, std::span<const double> r) {
     return cells::global_porosity(x, r);
   }
@@ -671,6 +673,11 @@ struct Hull<3> {
     return cells::local_porosity(x, r, nl);
   }
 };
+
+/// Global porosity estimated from the convex hull of the centres, in 2D and 3D.
+using HullGlobalPorosity = BasicGlobalPorosity<QhullHulls>;
+/// Local porosity from the convex hulls of each particle and its neighbours, in 2D and 3D.
+using HullLocalPorosity = BasicLocalPorosity<QhullHulls>;
 
 /// Cell-size method "Voronoi diagram" (a `Simulation` option for the Voronoi conduction
 /// models): r_ij from the face shared by the cells of i and j in a power (default) or Voronoi
@@ -692,7 +699,7 @@ struct VoronoiDiagram {
   }
   template <int D, class Walls>
   static CellRadii compute(const Params& p, std::span<const Vec<D>> x, std::span<const double> r,
-                           const NeighborList& nl, const Walls& walls) {
+                           const NeighborList& nl, const Walls& walls, double) {
     std::vector<WallPlane<D>> planes(nl.walls.size());
     for (std::size_t i = 0; i + 1 < nl.wall_offsets.size(); ++i)
       for (auto e = nl.wall_offsets[i]; e < nl.wall_offsets[i + 1]; ++e) {

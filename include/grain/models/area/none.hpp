@@ -30,7 +30,7 @@ struct None {
   }
 };
 
-/// The half chord of the lens of the two undeformed bodies (`ContactGeometry::contact_radius`),
+/// The half chord of the lens of the two undeformed bodies (`lens_contact_radius`),
 /// a = sqrt(R1^2 - ((R1^2 - R2^2 + d^2)/(2 d))^2), about sqrt(2 R* delta) for small overlaps: the
 /// contact radius of the seed program. No correction of the modulus.
 struct Geometric {
@@ -43,7 +43,7 @@ struct Geometric {
   template <int D>
   static double radius(const ContactGeometry<D>& g, const PairProperties&, const NormalResult&,
                        const Params&) {
-    return g.contact_radius;
+    return lens_contact_radius(g);
   }
 };
 

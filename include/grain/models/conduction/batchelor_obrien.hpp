@@ -18,6 +18,7 @@ struct BatchelorOBrien {
   static constexpr Slot slot = Slot::conduction;
   static constexpr const char* name = "Batchelor-O'Brien";
   static constexpr bool thermal = true;
+  static constexpr bool uses_distance = false; ///< needs the contact radius only
   struct Params {};
   template <int D>
   struct History {};

@@ -62,6 +62,7 @@ struct Collisional {
   static constexpr Slot slot = Slot::conduction;
   static constexpr const char* name = "collisional";
   static constexpr bool thermal = true;
+  static constexpr bool uses_distance = false; ///< needs the contact radius only
 
   struct Params {
     /// Correction factor C' [-] of the impact heat; 0 = the Zhou, Yu & Horio fit C(b, Fo);

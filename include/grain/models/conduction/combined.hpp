@@ -27,6 +27,8 @@ struct Combined {
   static constexpr bool indirect = conducts_across_gaps<Direct> || conducts_across_gaps<Indirect>;
   static constexpr bool uses_cell_radius =
       grain::uses_cell_radius<Direct> || grain::uses_cell_radius<Indirect>;
+  static constexpr bool uses_distance =
+      uses_consistent_distance<Direct> || uses_consistent_distance<Indirect>;
 
   struct Params {
     typename Direct::Params direct{};
