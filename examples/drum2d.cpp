@@ -20,7 +20,9 @@
 ///
 /// Output: every 0.1 s a line with the mean, lowest and highest disk temperature and the heat
 /// flow from the drum; VTK files output_dir/drum2d_particles_NNNNNN.vtk (fields temperature,
-/// heat_rate, velocity, ...) and drum2d_walls_NNNNNN.vtk every 0.05 s. The program exits with
+/// heat_rate, velocity, ...) and drum2d_walls_NNNNNN.vtk every 0.05 s; the time history
+/// output_dir/drum2d_history.csv (energies, contacts, mean temperature, heat content, heat
+/// inflow, lowest and highest temperature) every 0.01 s. The program exits with
 /// status 1 if a disk has left the drum or a temperature leaves [300 K, 400 K].
 
 #include <grain/grain.hpp>
@@ -113,7 +115,16 @@ int main(int argc, char** argv) {
     std::printf("  %10.3f   %10.3f   %10.3f   %10.3f   %18.4f   %4zu + %3zu\n", s.time(), mean,
                 lo, hi, q, pp, pw);
   };
+  auto lowest = [](const Sim& s) {
+    return *std::min_element(s.particles().temperature.begin(), s.particles().temperature.end());
+  };
+  auto highest = [](const Sim& s) {
+    return *std::max_element(s.particles().temperature.begin(), s.particles().temperature.end());
+  };
   sim.run(end_time, io::summary(), io::every(0.1, log), io::every(0.05, io::vtk(prefix)),
+          io::every(0.01, io::history(prefix + "_history.csv",
+                                      io::column("min_temperature [K]", lowest),
+                                      io::column("max_temperature [K]", highest))),
           io::progress());
 
   // ------------------------------------------------------------------ results
@@ -128,7 +139,8 @@ int main(int argc, char** argv) {
               sim.time(), sim.mean_temperature(), bed_temperature);
   std::printf("  disks outside the drum: %zu, temperatures outside [%.0f, %.0f] K: %zu\n",
               outside, bed_temperature, wall_temperature, out_of_range);
-  std::printf("  output: VTK series in %s (drum2d_particles_*.vtk, drum2d_walls_*.vtk)\n",
+  std::printf("  output in %s: VTK series drum2d_particles_*.vtk, drum2d_walls_*.vtk; time history "
+              "drum2d_history.csv\n",
               std::filesystem::absolute(out_dir).lexically_normal().string().c_str());
   return outside == 0 && out_of_range == 0 ? 0 : 1;
 }

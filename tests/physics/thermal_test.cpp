@@ -519,3 +519,52 @@ TEST_CASE("a thermal analysis sees its contacts at rest: the collisional model g
   // Batchelor-O'Brien with the Hertz radius: 2 k a, a = sqrt(R* delta)
   CHECK(H == grain::test::approx(2.0 * std::sqrt(0.005 * 1e-4)).epsilon(1e-12));
 }
+
+TEST_CASE("a wall temperature given as a time function, and convection to a fluid at rest") {
+  // A sphere touching a wall whose temperature is a table: 300 K until t = 100 s, then 400 K
+  // (ramp over 10 s). The forward-Euler recursion T += dt H (T_w(t_n) - T)/C is replayed in the
+  // test and must match to round-off (class A).
+  {
+    Sim3::Params p;
+    p.analysis = Analysis::thermal;
+    p.time_step = 5.0;
+    Sim3 sim(p);
+    const auto m = sim.add_material(glass());
+    const TimeFunction tw = TimeFunction::table({{0.0, 300.0}, {100.0, 300.0}, {110.0, 400.0}});
+    sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m, .temperature = tw});
+    sim.add_particle({.position = {0, 0, 0.01 - 1e-4}, .radius = 0.01, .material = m,
+                      .temperature = 300});
+    sim.initialize();
+    const double C = 2500 * 4.0 / 3.0 * std::numbers::pi * 1e-6 * 800;
+    const double H = 4.0 * 0.5 * std::sqrt(0.01 * 1e-4);
+    double T = 300.0;
+    for (int n = 0; n < 200; ++n) {
+      T += 5.0 * H * (tw(5.0 * n) - T) / C;
+      sim.step();
+    }
+    CHECK(T > 315.0); // the wall has heated the sphere
+    CHECK(temperature_of(sim, 0) == grain::test::approx(T).epsilon(1e-12));
+    CHECK(sim.walls()[0].temperature == 400.0);
+  }
+  // Convection only (insulated wall, no contact): Nu = 2 at rest for both correlations, so
+  // h S = (2 k_f / 2R) 4 pi R^2 and T relaxes to T_f with the forward-Euler recursion.
+  auto relax = [](auto convection_model) {
+    using M = decltype(convection_model);
+    using Sim = Simulation<Sphere, search::AllPairs, Thermal, M>;
+    typename Sim::Params p;
+    p.analysis = Analysis::thermal;
+    p.time_step = 10.0;
+    p.fluid = {.temperature = 350, .density = 1.2, .viscosity = 1.8e-5, .conductivity = 0.026,
+               .heat_capacity = 1000};
+    Sim sim(p);
+    const auto m = sim.add_material(glass());
+    sim.add_particle({.position = {0, 0, 0}, .radius = 0.01, .material = m, .temperature = 300});
+    sim.steps(50);
+    const double C = 2500 * 4.0 / 3.0 * std::numbers::pi * 1e-6 * 800;
+    const double hs = 2.0 * 0.026 / 0.02 * 4.0 * std::numbers::pi * 1e-4;
+    CHECK(temperature_of(sim, 0) ==
+          grain::test::approx(350.0 - 50.0 * std::pow(1.0 - 10.0 * hs / C, 50.0)).epsilon(1e-12));
+  };
+  relax(convection::RanzMarshall{});
+  relax(convection::Whitaker{});
+}

@@ -3,3 +3,4 @@
 /// Input/output helpers. They read a simulation and are never included by the core.
 #include <grain/io/console.hpp>
 #include <grain/io/vtk.hpp>
+#include <grain/io/csv.hpp>
