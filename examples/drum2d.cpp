@@ -22,7 +22,10 @@
 /// flow from the drum; VTK files output_dir/drum2d_particles_NNNNNN.vtk (fields temperature,
 /// heat_rate, velocity, ...) and drum2d_walls_NNNNNN.vtk every 0.05 s; the time history
 /// output_dir/drum2d_history.csv (energies, contacts, mean temperature, heat content, heat
-/// inflow, lowest and highest temperature) every 0.01 s. The program exits with
+/// inflow, lowest and highest temperature) every 0.01 s. At the end, with Python and matplotlib
+/// (Debian python3-matplotlib), scripts/grain_plot.py draws two graphs of the history
+/// (drum2d_temperatures.png, drum2d_mechanics.png) and a picture of the last frame coloured by
+/// temperature (drum2d_final.png). The program exits with
 /// status 1 if a disk has left the drum or a temperature leaves [300 K, 400 K].
 
 #include <grain/grain.hpp>
@@ -47,6 +50,39 @@ using Contact = Interaction<normal::Hertz<normal::TsujiDamping>, // normal force
                             conduction::BatchelorOBrien,         // heat through the contact
                             area::ZhouYuZulli>;                  // contact-radius correction
 using Sim = Simulation<Disk, search::CellList, Contact, integrate::VelocityVerlet>;
+
+namespace {
+
+/// Graphs of the history and a picture of the last frame, drawn by scripts/grain_plot.py (its
+/// location is known at build time). Returns false if Python with matplotlib is missing.
+bool draw_pictures(const std::filesystem::path& dir) {
+#ifdef GRAIN_PLOT_SCRIPT
+  const std::string python =
+      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  auto run = [&](const std::string& args) {
+    const std::string cmd =
+        python + " '" + std::string(GRAIN_PLOT_SCRIPT) + "' " + args + " > /dev/null 2>&1";
+    return std::system(cmd.c_str()) == 0;
+  };
+  const std::string d = dir.string();
+  std::string last;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("drum2d_particles_", 0) == 0 && name > last) last = name;
+  }
+  return !last.empty() &&
+         run("history '" + d + "/drum2d_history.csv' -y mean_temperature -y min_temperature "
+             "-y max_temperature -y heat_inflow -o '" + d + "/drum2d_temperatures.png'") &&
+         run("history '" + d + "/drum2d_history.csv' -y kinetic_energy -y contacts_pp "
+             "-y contacts_pw -o '" + d + "/drum2d_mechanics.png'") &&
+         run("disks '" + d + "/" + last + "' -f temperature -o '" + d + "/drum2d_final.png'");
+#else
+  (void)dir;
+  return false;
+#endif
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
   // ------------------------------------------------------------------ command line
@@ -139,8 +175,10 @@ int main(int argc, char** argv) {
               sim.time(), sim.mean_temperature(), bed_temperature);
   std::printf("  disks outside the drum: %zu, temperatures outside [%.0f, %.0f] K: %zu\n",
               outside, bed_temperature, wall_temperature, out_of_range);
+  const bool pictures = draw_pictures(out_dir);
   std::printf("  output in %s: VTK series drum2d_particles_*.vtk, drum2d_walls_*.vtk; time history "
-              "drum2d_history.csv\n",
-              std::filesystem::absolute(out_dir).lexically_normal().string().c_str());
+              "drum2d_history.csv%s\n",
+              std::filesystem::absolute(out_dir).lexically_normal().string().c_str(), pictures ? "; graphs drum2d_temperatures.png, drum2d_mechanics.png; picture "
+              "drum2d_final.png" : " (no graphs: scripts/grain_plot.py needs python3-matplotlib)");
   return outside == 0 && out_of_range == 0 ? 0 : 1;
 }
