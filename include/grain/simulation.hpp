@@ -443,6 +443,9 @@ public:
   /// Validates the set-up, fixes the time step, builds the neighbour list and computes the
   /// initial forces. Called by run() and step() when needed; raises InputError on bad input.
   void initialize() {
+    // a re-initialisation (after adding particles, walls or materials) continues the time
+    time_offset_ = time_;
+    step0_ = step_;
     if (materials_.empty() && (particles_.size() > 0 || !walls_.empty()))
       throw InputError("Simulation: no material was added; add_material() first");
     if constexpr (thermal) {
@@ -528,7 +531,8 @@ public:
       if (heats()) integrate_temperature(dt);
     }
     ++step_;
-    time_ = static_cast<double>(step_) * dt_ + time_offset_;
+    // time counts whole steps since the last initialisation (no drift from summing dt)
+    time_ = static_cast<double>(step_ - step0_) * dt_ + time_offset_;
     if constexpr (thermal)
       for (auto& w : walls_) w.update_temperature(time_); // current for output and queries
     counters_.steps += 1;
@@ -1218,6 +1222,7 @@ private:
   std::vector<double> cell_pair_, cell_wall_; ///< fluid-cell radius per list entry [m]
   long steps_since_cells_ = 0;
   long step_ = 0, steps_since_rebuild_ = 0;
+  long step0_ = 0; ///< step count at the last initialisation (time is counted from there)
   std::int64_t next_id_ = 0;
   bool initialized_ = false;
   RunCounters counters_;

@@ -177,3 +177,21 @@ TEST_CASE("rotation: a spinning sphere's orientation turns by omega t") {
   CHECK(aa.angle() == grain::test::approx(0.2).epsilon(1e-10));
   CHECK(aa.axis().isApprox(Vec3::UnitZ()));
 }
+
+TEST_CASE("adding a particle during a run continues the time, with the new time step") {
+  using Sim = grain::Simulation<grain::Sphere, grain::search::CellList,
+                                grain::Interaction<grain::normal::Hertz<>>>;
+  Sim sim;
+  const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
+  sim.add_particle({.position = {0, 0, 0}, .radius = 2e-3, .material = m});
+  sim.steps(10);
+  const double dt1 = sim.time_step(), t1 = sim.time();
+  CHECK(t1 == grain::test::approx(10 * dt1).epsilon(1e-14));
+  // a smaller particle lowers the automatic time step
+  sim.add_particle({.position = {0.01, 0, 0}, .radius = 1e-3, .material = m});
+  sim.steps(5);
+  const double dt2 = sim.time_step();
+  CHECK(dt2 < dt1);
+  CHECK(sim.step_count() == 15);
+  CHECK(sim.time() == grain::test::approx(t1 + 5 * dt2).epsilon(1e-14));
+}
