@@ -20,7 +20,9 @@
 ///
 /// Output: every 0.1 s a line with the mean, lowest and highest disk temperature and the heat
 /// flow from the drum; VTK files output_dir/drum2d_particles_NNNNNN.vtk (fields temperature,
-/// heat_rate, velocity, ...) and drum2d_walls_NNNNNN.vtk every 0.05 s; the time history
+/// heat_rate, velocity, ...), drum2d_walls_NNNNNN.vtk and the contact network
+/// drum2d_contacts_NNNNNN.vtk (forces, contact radii, heat rates) every 0.05 s, with their
+/// ParaView series files drum2d_*.vtk.series; the time history
 /// output_dir/drum2d_history.csv (energies, contacts, mean temperature, heat content, heat
 /// inflow, lowest and highest temperature) every 0.01 s. At the end, with Python and matplotlib
 /// (Debian python3-matplotlib), scripts/grain_plot.py draws two graphs of the history
@@ -157,7 +159,8 @@ int main(int argc, char** argv) {
   auto highest = [](const Sim& s) {
     return *std::max_element(s.particles().temperature.begin(), s.particles().temperature.end());
   };
-  sim.run(end_time, io::summary(), io::every(0.1, log), io::every(0.05, io::vtk(prefix)),
+  sim.run(end_time, io::summary(), io::every(0.1, log),
+          io::every(0.05, io::vtk(prefix, 1.0, /*contacts=*/true)),
           io::every(0.01, io::history(prefix + "_history.csv",
                                       io::column("min_temperature [K]", lowest),
                                       io::column("max_temperature [K]", highest))),
@@ -176,7 +179,7 @@ int main(int argc, char** argv) {
   std::printf("  disks outside the drum: %zu, temperatures outside [%.0f, %.0f] K: %zu\n",
               outside, bed_temperature, wall_temperature, out_of_range);
   const bool pictures = draw_pictures(out_dir);
-  std::printf("  output in %s: VTK series drum2d_particles_*.vtk, drum2d_walls_*.vtk; time history "
+  std::printf("  output in %s: VTK series drum2d_{particles,walls,contacts}.vtk.series; time history "
               "drum2d_history.csv%s\n",
               std::filesystem::absolute(out_dir).lexically_normal().string().c_str(), pictures ? "; graphs drum2d_temperatures.png, drum2d_mechanics.png; picture "
               "drum2d_final.png" : " (no graphs: scripts/grain_plot.py needs python3-matplotlib)");

@@ -44,6 +44,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #ifdef _OPENMP
@@ -594,27 +595,47 @@ public:
     return pairs_[a * materials_.size() + b];
   }
 
-  /// Visits every touching contact: f(i, j_or_wall, is_wall, geometry, result). The contact
-  /// models are evaluated on copies of the histories, so the state is not changed.
+  /// Visits every touching contact: f(i, j_or_wall, is_wall, geometry, result), or, if f takes a
+  /// sixth argument, also the heat rate into particle i through the contact [W] (0 without heat
+  /// conduction or across an insulated wall). The contact models are evaluated on copies of the
+  /// histories, so the state is not changed.
   template <class F>
   void for_each_contact(F&& f) const {
     ContactGeometry<D> g;
     const auto& p = particles_;
+    auto visit = [&](std::size_t i, std::size_t j, bool wall, const PairProperties& pair,
+                     History h, double cell_radius) {
+      auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
+      using R = decltype(r);
+      if constexpr (std::is_invocable_v<F&, std::size_t, std::size_t, bool,
+                                        const ContactGeometry<D>&, const R&, double>) {
+        double q = 0.0;
+        if constexpr (thermal) {
+          const double tj = wall ? walls_[j].temperature : p.temperature[j];
+          if (!wall || walls_[j].conducts()) {
+            const double H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_,
+                                                  length(), cell_radius);
+            q = H * (tj - p.temperature[i]);
+          }
+        }
+        f(i, j, wall, std::as_const(g), std::as_const(r), q);
+      } else {
+        (void)cell_radius;
+        f(i, j, wall, std::as_const(g), std::as_const(r));
+      }
+    };
     for (std::size_t i = 0; i < p.size(); ++i) {
       for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
         const auto j = list_.partners[e];
         if (!touching_pair(i, j, g)) continue;
-        History h = history_at(history_, e);
-        auto r = Contact::evaluate(g, pair_properties(p.material[i], p.material[j]), params_.contact, h, dt_);
-        f(i, static_cast<std::size_t>(j), false, g, r);
+        visit(i, j, false, pair_properties(p.material[i], p.material[j]),
+              history_at(history_, e), cell_radius_pair(e));
       }
       for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
         const auto w = list_.walls[e];
         if (!touching_wall(i, w, g)) continue;
-        History h = history_at(wall_history_, e);
-        auto r = Contact::evaluate(g, pair_properties(p.material[i], walls_[w].options.material),
-                                   params_.contact, h, dt_);
-        f(i, static_cast<std::size_t>(w), true, g, r);
+        visit(i, w, true, pair_properties(p.material[i], walls_[w].options.material),
+              history_at(wall_history_, e), cell_radius_wall(e));
       }
     }
   }

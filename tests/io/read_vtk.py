@@ -36,7 +36,9 @@ INTEGER_TYPES = {VTK_CHAR, VTK_SIGNED_CHAR, VTK_UNSIGNED_CHAR, VTK_SHORT, VTK_UN
                  VTK_UNSIGNED_LONG_LONG, VTK_ID_TYPE}
 PARTICLE_FIELDS = {"id": 1, "radius": 1, "velocity": 3, "omega": 3, "force": 3}
 THERMAL_FIELDS = {"temperature": 1, "heat_rate": 1}
-FILE_NAME = re.compile(r"^(?P<series>.+)_(?P<kind>particles|walls)_(?P<number>\d{6})\.vtk$")
+FILE_NAME = re.compile(r"^(?P<series>.+)_(?P<kind>particles|walls|contacts)_(?P<number>\d{6})\.vtk$")
+CONTACT_FIELDS = {"wall": 1, "id_i": 1, "id_j": 1, "normal_force": 1, "tangential_force": 3,
+                  "overlap": 1, "contact_radius": 1}
 
 failures = []
 
@@ -288,6 +290,66 @@ def check_walls(path, frame, series, circle_segments, plane_size):
                         cell_point_ids(poly, c), walls[w], circle_segments, plane_size)
 
 
+def check_contacts(path, frame, count, thermal):
+    poly, header = read_polydata(path)
+    if poly is None:
+        return
+    check_header(path, header, "contacts", frame["time"])
+    expected = {(c["id_i"], c["id_j"], c["wall"]): c for c in frame["contacts"]}
+    walls = sum(1 for c in frame["contacts"] if c["wall"] >= 0)
+    if poly.GetNumberOfPoints() != count + walls:
+        fail(path, f"{poly.GetNumberOfPoints()} points, expected {count} centres + {walls} "
+                   "wall contact points")
+    if poly.GetNumberOfLines() != len(expected) or poly.GetNumberOfCells() != len(expected):
+        fail(path, f"{poly.GetNumberOfLines()} lines, expected {len(expected)} contacts")
+        return
+    if not expected:
+        return
+    cd = poly.GetCellData()
+    names = {cd.GetArrayName(k) for k in range(cd.GetNumberOfArrays())}
+    fields = dict(CONTACT_FIELDS, **({"heat_rate": 1} if thermal else {}))
+    if names != set(fields):
+        fail(path, f"cell fields {sorted(names)}, expected {sorted(fields)}")
+        return
+    arrays = {name: get_array(path, cd, name, c, name in ("wall", "id_i", "id_j"))
+              for name, c in fields.items()}
+    if any(a is None for a in arrays.values()):
+        return
+    seen = set()
+    for c in range(len(expected)):
+        key = (int(arrays["id_i"].GetTuple1(c)), int(arrays["id_j"].GetTuple1(c)),
+               int(arrays["wall"].GetTuple1(c)))
+        if key not in expected or key in seen:
+            fail(path, f"contact {key} unexpected or repeated")
+            continue
+        seen.add(key)
+        e = expected[key]
+        where = f"{path}: contact {key}"
+        for name in ("normal_force", "overlap", "contact_radius") + (("heat_rate",) if thermal else ()):
+            check_scalar(where, name, arrays[name].GetTuple1(c), e[name])
+        check_vector(where, "tangential_force", arrays["tangential_force"].GetTuple3(c),
+                     e["tangential_force"])
+        ids = cell_point_ids(poly, c)
+        if len(ids) != 2 or ids[1] == ids[0]:
+            fail(where, f"line points {ids}, expected two distinct points")
+
+
+def check_series_file(directory, sname, kind, frames):
+    path = os.path.join(directory, f"{sname}_{kind}.vtk.series")
+    try:
+        with open(path, encoding="utf-8") as f:
+            series = json.load(f)
+    except (OSError, ValueError) as e:
+        fail(path, f"cannot read the series file: {e}")
+        return
+    files = series.get("files", [])
+    want = [(f"{sname}_{kind}_{k:06d}.vtk", fr["time"]) for k, fr in enumerate(frames)]
+    got = [(f.get("name"), f.get("time")) for f in files]
+    if series.get("file-series-version") != "1.0" or len(got) != len(want) or any(
+            g[0] != w[0] or not close(g[1], w[1]) for g, w in zip(got, want)):
+        fail(path, f"files {got}, expected {want}")
+
+
 def main():
     if len(sys.argv) != 2:
         print("usage: read_vtk.py <directory>", file=sys.stderr)
@@ -301,6 +363,10 @@ def main():
 
     found = {}
     for name in sorted(os.listdir(directory)):
+        if name.endswith(".vtk.series"):
+            if not any(name.startswith(s + "_") for s in all_series):
+                fail(os.path.join(directory, name), "unexpected file")
+            continue
         if not name.endswith(".vtk"):
             continue
         m = FILE_NAME.match(name)
@@ -318,7 +384,9 @@ def main():
         if frames[-1]["time"] != series["final_time"]:
             fail(sname, f"last output at t = {frames[-1]['time']!r}, expected the end of the run, "
                         f"t = {series['final_time']!r}")
-        for kind in ("particles", "walls"):
+        kinds = ("particles", "walls") + (("contacts",) if "contacts" in frames[0] else ())
+        for kind in kinds:
+            check_series_file(directory, sname, kind, frames)
             numbers = sorted(found.get((sname, kind), []))
             if numbers != list(range(series["files"])):
                 fail(f"{directory}/{sname}_{kind}_*.vtk",
@@ -328,6 +396,9 @@ def main():
                 path = os.path.join(directory, f"{sname}_{kind}_{k:06d}.vtk")
                 if kind == "particles":
                     check_particles(path, frame, series["particle_count"])
+                elif kind == "contacts":
+                    thermal = "temperature" in frame["particles"][0]
+                    check_contacts(path, frame, series["particle_count"], thermal)
                 else:
                     check_walls(path, frame, series, circle_segments, plane_size)
                 checked += 1

@@ -88,6 +88,22 @@ struct Recorder {
           << ", \"temperature\": " << num(wall.conducts() ? wall.temperature : 0.0) << "}";
       }
     }
+    o << "],\n       \"contacts\": [";
+    bool first = true;
+    sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
+                             double q) {
+      using C = typename Sim::contact_type;
+      const auto& pair = sim.pair_properties(
+          p.material[i], wall ? sim.walls()[j].options.material : p.material[j]);
+      o << (first ? "\n         " : ",\n         ") << "{\"id_i\": " << p.id[i]
+        << ", \"id_j\": " << (wall ? -1 : p.id[j]) << ", \"wall\": " << (wall ? long(j) : -1L)
+        << ", \"normal_force\": " << num(r.normal.force)
+        << ", \"tangential_force\": " << vec<Sim::dimension>(r.tangent.force)
+        << ", \"overlap\": " << num(g.overlap) << ", \"contact_radius\": "
+        << num(C::area_model::radius(g, pair, r.normal, sim.params().contact.area))
+        << ", \"heat_rate\": " << num(q) << "}";
+      first = false;
+    });
     o << "]}";
     frames->push_back(o.str());
   }
@@ -119,7 +135,8 @@ std::string run_series(Sim& sim, const std::filesystem::path& dir, const std::st
   sim.initialize();
   const double interval = static_cast<double>(kStepsPerOutput) * sim.time_step();
   std::vector<std::string> frames;
-  sim.steps(kSteps, grain::io::every(interval, grain::io::vtk((dir / name).string(), kPlaneSize),
+  sim.steps(kSteps, grain::io::every(interval,
+                                     grain::io::vtk((dir / name).string(), kPlaneSize, true),
                                      Recorder{&frames}));
   if (static_cast<long>(frames.size()) != kExpectedFiles) {
     std::fprintf(stderr, "write_vtk: %s: every() fired %zu times, expected %ld\n", name.c_str(),

@@ -21,6 +21,8 @@
 #include <variant>
 #include <numbers>
 #include <vector>
+#include <cstdint>
+#include <utility>
 
 namespace grain::io {
 
@@ -145,27 +147,122 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
   }
 }
 
+/// Writes the contact network of a simulation as legacy VTK polydata: one line per touching
+/// contact, from the centre of particle i to the centre of particle j, or to the contact point
+/// for a wall contact. Points are the particle centres (in storage order) followed by one point
+/// per wall contact. Cell data: `wall` (-1 for a particle pair, else the wall index), `id_i`,
+/// `id_j` (-1 for a wall), `normal_force` [N] (repulsive positive), `tangential_force` [N]
+/// (vector on i), `overlap` [m], `contact_radius` [m] (as the area model gives it to conduction)
+/// and, in a thermal simulation, `heat_rate` [W] (into i).
+template <class Sim>
+void write_contacts_vtk(const Sim& sim, const std::string& path) {
+  constexpr int D = Sim::dimension;
+  struct Row {
+    std::size_t i, j;
+    bool wall;
+    grain::Vec<D> point, tangential;
+    double normal, overlap, radius, heat;
+  };
+  std::vector<Row> rows;
+  const auto& contact = sim.params().contact;
+  const auto& p = sim.particles();
+  sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
+                           double q) {
+    const auto& pair = sim.pair_properties(
+        p.material[i], wall ? sim.walls()[j].options.material : p.material[j]);
+    using C = typename Sim::contact_type;
+    const double a = C::area_model::radius(g, pair, r.normal, contact.area);
+    rows.push_back({i, j, wall, g.point, r.tangent.force, r.normal.force, g.overlap, a, q});
+  });
+  std::ofstream o(path);
+  if (!o) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
+  o.imbue(std::locale::classic());
+  o << std::setprecision(17);
+  const std::size_t n = p.size();
+  std::size_t extra = 0;
+  for (const auto& c : rows) extra += c.wall;
+  o << "# vtk DataFile Version 3.0\ngrain contacts t = " << sim.time() << "\nASCII\n"
+    << "DATASET POLYDATA\nPOINTS " << n + extra << " double\n";
+  for (std::size_t i = 0; i < n; ++i) detail::put3(o, p.position[i]);
+  for (const auto& c : rows)
+    if (c.wall) detail::put3(o, c.point);
+  o << "LINES " << rows.size() << ' ' << 3 * rows.size() << '\n';
+  std::size_t next = n;
+  for (const auto& c : rows) o << "2 " << c.i << ' ' << (c.wall ? next++ : c.j) << '\n';
+  if (rows.empty()) return; // no cell data without cells
+  o << "CELL_DATA " << rows.size() << "\nSCALARS wall int 1\nLOOKUP_TABLE default\n";
+  for (const auto& c : rows) o << (c.wall ? static_cast<long>(c.j) : -1L) << '\n';
+  o << "SCALARS id_i long 1\nLOOKUP_TABLE default\n";
+  for (const auto& c : rows) o << p.id[c.i] << '\n';
+  o << "SCALARS id_j long 1\nLOOKUP_TABLE default\n";
+  for (const auto& c : rows) o << (c.wall ? std::int64_t{-1} : p.id[c.j]) << '\n';
+  o << "SCALARS normal_force double 1\nLOOKUP_TABLE default\n";
+  for (const auto& c : rows) o << c.normal << '\n';
+  o << "VECTORS tangential_force double\n";
+  for (const auto& c : rows) detail::put3(o, c.tangential);
+  o << "SCALARS overlap double 1\nLOOKUP_TABLE default\n";
+  for (const auto& c : rows) o << c.overlap << '\n';
+  o << "SCALARS contact_radius double 1\nLOOKUP_TABLE default\n";
+  for (const auto& c : rows) o << c.radius << '\n';
+  if constexpr (Sim::thermal) {
+    o << "SCALARS heat_rate double 1\nLOOKUP_TABLE default\n";
+    for (const auto& c : rows) o << c.heat << '\n';
+  }
+}
+
+namespace detail {
+/// Rewrites `prefix_kind.vtk.series` (ParaView's file-series format) with one entry per file.
+inline void write_series(const std::string& prefix, const char* kind,
+                         const std::vector<std::pair<std::string, double>>& files) {
+  std::ofstream o(prefix + "_" + kind + ".vtk.series");
+  if (!o) throw std::runtime_error("grain::io::vtk: cannot write '" + prefix + "_" + kind +
+                                   ".vtk.series'");
+  o.imbue(std::locale::classic());
+  o << std::setprecision(17) << "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n";
+  for (std::size_t k = 0; k < files.size(); ++k)
+    o << "    { \"name\" : \"" << files[k].first << "\", \"time\" : " << files[k].second << " }"
+      << (k + 1 < files.size() ? ",\n" : "\n");
+  o << "  ]\n}\n";
+}
+} // namespace detail
+
 /// Output action: one particle file and one wall file per call, numbered 000000, 000001, ...
 struct VtkWriter {
   std::string prefix;
   double plane_size = 1.0;
+  bool contacts = false; ///< also write the contact network
   int count = 0;
+  std::vector<std::pair<std::string, double>> particle_files{}, wall_files{}, contact_files{};
 
   template <class Sim>
   void operator()(const Sim& sim) {
     const std::filesystem::path base(prefix);
     if (base.has_parent_path()) std::filesystem::create_directories(base.parent_path());
+    const std::string stem = base.filename().string();
     std::ostringstream num;
     num << std::setw(6) << std::setfill('0') << count++;
     write_particles_vtk(sim, prefix + "_particles_" + num.str() + ".vtk");
-    if (!sim.walls().empty())
+    particle_files.emplace_back(stem + "_particles_" + num.str() + ".vtk", sim.time());
+    detail::write_series(prefix, "particles", particle_files);
+    if (!sim.walls().empty()) {
       write_walls_vtk(sim, prefix + "_walls_" + num.str() + ".vtk", plane_size);
+      wall_files.emplace_back(stem + "_walls_" + num.str() + ".vtk", sim.time());
+      detail::write_series(prefix, "walls", wall_files);
+    }
+    if (contacts) {
+      write_contacts_vtk(sim, prefix + "_contacts_" + num.str() + ".vtk");
+      contact_files.emplace_back(stem + "_contacts_" + num.str() + ".vtk", sim.time());
+      detail::write_series(prefix, "contacts", contact_files);
+    }
   }
 };
 /// vtk(prefix): an output action writing legacy VTK files `prefix_particles_NNNNNN.vtk` and
-/// `prefix_walls_NNNNNN.vtk`.
-inline VtkWriter vtk(std::string prefix, double plane_size = 1.0) {
-  return VtkWriter{std::move(prefix), plane_size};
+/// `prefix_walls_NNNNNN.vtk`, and the ParaView series files `prefix_particles.vtk.series` and
+/// `prefix_walls.vtk.series` (rewritten after every frame: open them to see the whole run as
+/// one time-dependent source). With `contacts = true` also `prefix_contacts_NNNNNN.vtk` and its
+/// series (see write_contacts_vtk).
+inline VtkWriter vtk(std::string prefix, double plane_size = 1.0, bool contacts = false) {
+  return VtkWriter{std::move(prefix), plane_size, contacts};
 }
 
 } // namespace grain::io
