@@ -6,6 +6,7 @@
 #include <grain/grain.hpp>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <numbers>
 
 namespace grain::bench {
@@ -37,28 +38,42 @@ using Settle3dContact = Interaction<normal::Hertz<>, tangent::SpringDashpotSlide
 template <class Search = search::CellList>
 using Settle3d = Simulation<Sphere, Search, Settle3dContact, integrate::VelocityVerlet>;
 
-/// settle3d: spheres d = 1 mm on a simple cubic lattice (spacing 1.02 d) in a box of 6 planes,
-/// Hertz-Mindlin with e = 0.5, mu = 0.5, E = 1e7 Pa, nu = 0.3, dt = 2.5e-6 s, gravity -z.
-template <class Search = search::CellList>
-Settle3d<Search> make_settle3d(int nx, int ny, int nz) {
+namespace detail {
+/// The particles and walls of settle3d in `sim` (material m): spheres on the lattice with the
+/// R3-sequence velocities; in a thermal simulation columns i < nx/2 at 400 K, the others at 300 K.
+template <class Sim>
+void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz) {
   const double d = case_diameter, r = 0.5 * d, a = 1.02 * d, v0 = case_v0;
-  Settle3d<Search> sim(
-      {.time_step = case_time_step, .gravity = Vec3(0, 0, -9.81), .search = {.skin = 0.1 * d}});
-  const auto m = sim.add_material(case_material());
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const long n = i + static_cast<long>(nx) * (j + static_cast<long>(ny) * k);
         const Vec3 v(v0 * (2 * rseq(n, 0.8191725133961645) - 1), v0 * (2 * rseq(n, 0.6710436067037893) - 1),
                      v0 * (2 * rseq(n, 0.5497004779019703) - 1));
-        sim.add_particle({.position = Vec3((i + 0.5) * a, (j + 0.5) * a, (k + 0.5) * a), .radius = r,
-                          .material = m, .velocity = v});
+        ParticleSpec<3> spec{.position = Vec3((i + 0.5) * a, (j + 0.5) * a, (k + 0.5) * a),
+                             .radius = r, .material = m, .velocity = v};
+        if constexpr (Sim::thermal) {
+          spec.temperature = i < nx / 2 ? 400.0 : 300.0;
+          spec.id = n;
+        }
+        sim.add_particle(spec);
       }
   const Vec3 hi(nx * a, ny * a, nz * a);
   for (int dim = 0; dim < 3; ++dim) {
     sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::Unit(dim)}, {.name = "low", .material = m});
     sim.add_wall(walls::Plane{hi, -Vec3::Unit(dim)}, {.name = "high", .material = m});
   }
+}
+} // namespace detail
+
+/// settle3d: spheres d = 1 mm on a simple cubic lattice (spacing 1.02 d) in a box of 6 planes,
+/// Hertz-Mindlin with e = 0.5, mu = 0.5, E = 1e7 Pa, nu = 0.3, dt = 2.5e-6 s, gravity -z.
+template <class Search = search::CellList>
+Settle3d<Search> make_settle3d(int nx, int ny, int nz) {
+  Settle3d<Search> sim({.time_step = case_time_step,
+                        .gravity = Vec3(0, 0, -9.81),
+                        .search = {.skin = 0.1 * case_diameter}});
+  detail::fill_settle3d(sim, sim.add_material(case_material()), nx, ny, nz);
   return sim;
 }
 
@@ -92,31 +107,17 @@ template <class Search = search::CellList>
 using Thermal3d = Simulation<Sphere, Search, Thermal3dContact, integrate::VelocityVerlet>;
 
 /// thermal3d: settle3d plus conduction (k = 1 W/(m K), c = 840 J/(kg K)); particles of lattice
-/// columns i < floor(NX/2) start at 400 K (group "hot"), the others at 300 K.
+/// columns i < floor(NX/2) start at 400 K (group "hot"), the others at 300 K; ids are the
+/// lattice indices.
 template <class Search = search::CellList>
 Thermal3d<Search> make_thermal3d(int nx, int ny, int nz) {
-  const double d = case_diameter, r = 0.5 * d, a = 1.02 * d, v0 = case_v0;
-  Thermal3d<Search> sim(
-      {.time_step = case_time_step, .gravity = Vec3(0, 0, -9.81), .search = {.skin = 0.1 * d}});
+  Thermal3d<Search> sim({.time_step = case_time_step,
+                         .gravity = Vec3(0, 0, -9.81),
+                         .search = {.skin = 0.1 * case_diameter}});
   Material mat = case_material();
   mat.conductivity = 1.0;
   mat.heat_capacity = 840.0;
-  const auto m = sim.add_material(mat);
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const long n = i + static_cast<long>(nx) * (j + static_cast<long>(ny) * k);
-        const Vec3 v(v0 * (2 * rseq(n, 0.8191725133961645) - 1), v0 * (2 * rseq(n, 0.6710436067037893) - 1),
-                     v0 * (2 * rseq(n, 0.5497004779019703) - 1));
-        sim.add_particle({.position = Vec3((i + 0.5) * a, (j + 0.5) * a, (k + 0.5) * a), .radius = r,
-                          .material = m, .velocity = v, .temperature = i < nx / 2 ? 400.0 : 300.0,
-                          .id = n});
-      }
-  const Vec3 hi(nx * a, ny * a, nz * a);
-  for (int dim = 0; dim < 3; ++dim) {
-    sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::Unit(dim)}, {.name = "low", .material = m});
-    sim.add_wall(walls::Plane{hi, -Vec3::Unit(dim)}, {.name = "high", .material = m});
-  }
+  detail::fill_settle3d(sim, sim.add_material(mat), nx, ny, nz);
   return sim;
 }
 
