@@ -1,6 +1,7 @@
 // Cell-size methods without qhull (grain/thermal/cells.hpp): the porosity relation, disk and ball
 // overlaps with polygons and polyhedra, 2D global and local porosity, radii from porosities.
 #include <doctest/doctest.h>
+#include "../lattices.hpp"
 #include <grain/thermal/cells.hpp>
 
 #include <algorithm>
@@ -12,32 +13,12 @@
 using namespace grain;
 using namespace grain::cells;
 
+using grain::test::pairs_within;
+using grain::test::square_lattice;
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-/// Half neighbour list of all pairs closer than `cut` (brute force).
-template <int D>
-NeighborList pairs_within(const std::vector<Vec<D>>& x, double cut) {
-  NeighborList nl;
-  nl.clear(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    for (std::size_t j = i + 1; j < x.size(); ++j)
-      if ((x[i] - x[j]).norm() < cut) nl.partners.push_back(static_cast<std::uint32_t>(j));
-    nl.offsets.push_back(static_cast<std::uint32_t>(nl.partners.size()));
-    nl.wall_offsets.push_back(0);
-  }
-  return nl;
-}
-
-/// n x n square lattice of spacing s (row by row).
-std::vector<Vec2> square_lattice(int n, double s) {
-  std::vector<Vec2> x;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      x.emplace_back(i * s, j * s);
-  return x;
-}
 
 /// n rows of n disks, hexagonal (triangular) lattice of spacing s.
 std::vector<Vec2> hexagonal_lattice(int n, double s) {

@@ -1,6 +1,7 @@
 // Cell radii from Voronoi and power diagrams and 3D porosities (grain/thermal/voronoi.hpp, qhull):
 // exact lattice values, boundaries, walls, order independence.
 #include <doctest/doctest.h>
+#include "../lattices.hpp"
 #include <grain/thermal/voronoi.hpp>
 
 #include <algorithm>
@@ -15,23 +16,12 @@
 using namespace grain;
 using namespace grain::cells;
 
+using grain::test::pairs_within;
+using grain::test::square_lattice;
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-/// Half neighbour list of all pairs closer than `cut` (brute force), no walls.
-template <int D>
-NeighborList pairs_within(const std::vector<Vec<D>>& x, double cut) {
-  NeighborList nl;
-  nl.clear(x.size());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    for (std::size_t j = i + 1; j < x.size(); ++j)
-      if ((x[i] - x[j]).norm() < cut) nl.partners.push_back(static_cast<std::uint32_t>(j));
-    nl.offsets.push_back(static_cast<std::uint32_t>(nl.partners.size()));
-    nl.wall_offsets.push_back(0);
-  }
-  return nl;
-}
 
 /// Calls f(i, j, r) for every pair of the list.
 template <class F>
@@ -51,14 +41,6 @@ NeighborList with_wall_for_all(NeighborList nl) {
     nl.wall_offsets.push_back(static_cast<std::uint32_t>(nl.walls.size()));
   }
   return nl;
-}
-
-std::vector<Vec2> square_lattice(int n, double s) {
-  std::vector<Vec2> x;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      x.emplace_back(i * s, j * s);
-  return x;
 }
 
 std::vector<Vec3> cubic_lattice(int n, double s) {
