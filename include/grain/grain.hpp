@@ -59,6 +59,8 @@
 #include <grain/models/convection/none.hpp>
 #include <grain/models/convection/ranz_marshall.hpp>
 #include <grain/models/convection/whitaker.hpp>
+#include <grain/conditions/conditions.hpp>
+#include <grain/conditions/regions.hpp>
 #include <grain/interaction.hpp>
 #include <grain/presets.hpp>
 #include <grain/integrate/integrators.hpp>

@@ -10,10 +10,16 @@
 /// 2. neighbour search: the candidate list is rebuilt if the search says so (never late);
 /// 3. per-contact pipeline for particle pairs and particle-wall pairs (forces, torques and, in a
 ///    thermal simulation, conductances and heat rates);
-/// 4. global conditions: gravity, translational and rotational damping; convection;
+/// 4. prescribed conditions (forces, torques, heat fluxes and rates of groups); global conditions:
+///    gravity, damping (all possibly time functions); convection; restraints remove the
+///    restrained force and torque components;
 /// 5. integration (Euler family: particles advance, then walls move; Verlet: second half kick);
-///    temperatures advance by forward Euler, T += dt Q / (m c);
-/// 6. time advances; wall temperatures follow their time functions.
+///    prescribed motion replaces the integrated motion of its particles; temperatures advance by
+///    forward Euler, T += dt Q / (m c); fixed temperatures are set;
+/// 6. time advances; wall temperatures follow their time functions;
+/// 7. lifecycle: particles that left the bounding box, entered a sink or reached their
+///    destruction time are removed (with their contacts), particles whose creation time has come
+///    are activated; the neighbour list is rebuilt when that happens.
 ///
 /// Analyses (`SimulationParams::analysis`): mechanical (no heat), thermo-mechanical (both, every
 /// step; the default when the contact has a conduction model) and thermal (particles never move:
@@ -24,7 +30,10 @@
 /// number of threads; even chunks run in parallel, then odd ones, so each particle receives its
 /// contributions in a fixed order and the results are bit-identical for any thread count.
 
+#include <grain/conditions/conditions.hpp>
+#include <grain/conditions/regions.hpp>
 #include <grain/core/error.hpp>
+#include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/integrate/integrators.hpp>
 #include <grain/interaction.hpp>
@@ -42,7 +51,9 @@
 #include <cstdint>
 #include <numbers>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -64,6 +75,11 @@ struct ParticleSpec {
   /// Initial temperature [K] (thermal simulations only); NaN = SimulationParams::initial_temperature.
   double temperature = std::numeric_limits<double>::quiet_NaN();
   bool fixed = false; ///< if true the particle keeps its velocities (forces do not move it)
+  /// Time [s] from which the particle exists; before it, it is inactive (stored, but invisible to
+  /// contacts, output and statistics). -inf (default) = from the start.
+  double creation_time = -std::numeric_limits<double>::infinity();
+  /// Time [s] at which the particle is removed, with its contacts; +inf (default) = never.
+  double destruction_time = std::numeric_limits<double>::infinity();
   std::int64_t id = -1; ///< -1 = next free id
 };
 
@@ -256,21 +272,54 @@ public:
     initialized_ = false;
   }
 
-  /// Adds a particle; returns its id. Throws InputError on bad input.
-  std::int64_t add_particle(const ParticleSpec<D>& s) {
-    const std::int64_t id = s.id >= 0 ? s.id : next_id_;
+  /// Adds a particle; returns its id. Throws InputError on bad input. A particle with a creation
+  /// time later than the current time waits, inactive, until then.
+  std::int64_t add_particle(const ParticleSpec<D>& spec) {
+    ParticleSpec<D> s = spec;
+    s.id = s.id >= 0 ? s.id : next_id_;
+    const std::int64_t id = s.id;
     const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
     detail::require(all_finite(s.position), obj, "position", to_text(s.position), "finite coordinates");
     detail::require_positive(obj, "radius", s.radius);
     detail::require(all_finite(s.velocity), obj, "velocity", to_text(s.velocity), "finite components");
     detail::require(all_finite(s.omega), obj, "omega", "(non-finite)", "finite components");
     check_material(s.material, obj);
+    detail::require(!std::isnan(s.creation_time) &&
+                        s.creation_time < std::numeric_limits<double>::infinity(),
+                    obj, "creation_time", s.creation_time, "[-inf, inf) s");
+    detail::require(!std::isnan(s.destruction_time) && s.destruction_time > s.creation_time, obj,
+                    "destruction_time", s.destruction_time,
+                    "(creation_time, inf] = (" + detail::to_text(s.creation_time) + ", inf] s");
+    if constexpr (thermal) {
+      const double t = std::isnan(s.temperature) ? params_.initial_temperature : s.temperature;
+      detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
+      s.temperature = t;
+    } else {
+      if (!std::isnan(s.temperature))
+        throw InputError(obj + ": temperature = " + detail::to_text(s.temperature) +
+                         " K is given but the contact has no conduction model; valid: leave it "
+                         "unset, or give the Interaction a conduction model");
+    }
     next_id_ = std::max(next_id_, id + 1);
+    if (std::isfinite(s.destruction_time)) doomed_.push_back({s.destruction_time, id});
+    if (s.creation_time > time_) {
+      pending_.push_back(s);
+    } else {
+      append_particle(s);
+      groups_dirty_ = true;
+    }
+    initialized_ = false;
+    return id;
+  }
+
+private:
+  /// Appends a validated particle to the arrays.
+  void append_particle(const ParticleSpec<D>& s) {
     const Material& m = materials_[s.material];
     const double mass = m.density * shape_.volume(s.radius);
     const double inertia = shape_.inertia_factor() * mass * s.radius * s.radius;
     auto& p = particles_;
-    p.id.push_back(id);
+    p.id.push_back(s.id);
     p.position.push_back(s.position);
     p.velocity.push_back(s.velocity);
     p.omega.push_back(s.omega);
@@ -284,22 +333,15 @@ public:
     p.inv_inertia.push_back(s.fixed ? 0.0 : 1.0 / inertia);
     p.material.push_back(s.material);
     if constexpr (thermal) {
-      const double t = std::isnan(s.temperature) ? params_.initial_temperature : s.temperature;
-      detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
       const double c = mass * m.heat_capacity;
-      p.temperature.push_back(t);
+      p.temperature.push_back(s.temperature);
       p.heat_rate.push_back(0.0);
       p.heat_capacity.push_back(c);
       p.inv_heat_capacity.push_back(c > 0 ? 1.0 / c : 0.0);
-    } else {
-      if (!std::isnan(s.temperature))
-        throw InputError(obj + ": temperature = " + detail::to_text(s.temperature) +
-                         " K is given but the contact has no conduction model; valid: leave it "
-                         "unset, or give the Interaction a conduction model");
     }
-    initialized_ = false;
-    return id;
   }
+
+public:
 
   /// Adds a wall; returns its index. Throws InputError on bad geometry.
   template <class G>
@@ -319,40 +361,246 @@ public:
     return static_cast<std::uint32_t>(walls_.size() - 1);
   }
 
+  /// Constant gravity [m/s^2].
   void set_gravity(const V& g) {
     for (int d = 0; d < D; ++d) detail::require_finite("Simulation", "gravity component", g[d]);
     params_.gravity = g;
+    gravity_fn_.reset();
+    gravity_now_ = g;
+  }
+  /// Gravity that changes in time [m/s^2] (each component a TimeFunction; 0 while inactive).
+  void set_gravity(const VectorTimeFunction<D>& g) {
+    gravity_fn_ = g;
+    gravity_now_ = g(time_);
+  }
+  /// Gravity acting at the last force evaluation (or the constant gravity) [m/s^2].
+  V gravity() const { return gravity_fn_ ? gravity_now_ : params_.gravity; }
+
+  /// Global damping that changes in time: force -c_t(t) v [c_t in N s/m] and torque -c_r(t) omega
+  /// [c_r in N m s], replacing SimulationParams::damping_translational / damping_rotational.
+  void set_damping(TimeFunction translational, TimeFunction rotational = {}) {
+    damping_fn_ = std::make_pair(std::move(translational), std::move(rotational));
+  }
+  /// Mass-proportional damping per component (the third seed's DAMPING): force -m (d (.) v) and
+  /// torque -I (d_w (.) omega), (.) the componentwise product; d, d_w in 1/s, time functions.
+  void set_mass_damping(VectorTimeFunction<D> linear, AngularTimeFunction<D> angular = {}) {
+    mass_damping_ = std::make_pair(std::move(linear), std::move(angular));
+  }
+
+  // ---------------------------------------------------------------- groups and conditions
+  /// Adds a named group of particles (by id) and walls (by index); returns its index. The name
+  /// "all" is reserved for the group of every particle and wall.
+  std::size_t add_group(std::string name, std::vector<std::int64_t> particle_ids,
+                        std::vector<std::uint32_t> wall_indices = {}) {
+    const std::string obj = "Simulation::add_group '" + name + "'";
+    for (const auto w : wall_indices)
+      if (w >= walls_.size())
+        throw InputError(obj + ": wall = " + std::to_string(w) + " is invalid; valid range: [0, " +
+                         std::to_string(walls_.size()) + ") (indices returned by add_wall)");
+    for (const auto id : particle_ids)
+      if (!has_particle(id))
+        throw InputError(obj + ": particle id = " + std::to_string(id) +
+                         " is invalid; valid: ids of added particles");
+    const auto g = cond_.add(Group{std::move(name), false, std::move(particle_ids),
+                                   std::move(wall_indices)});
+    groups_dirty_ = true;
+    return g;
+  }
+  /// Adds a group of the current (active) particles for which pred(position, radius) is true,
+  /// and of the given walls.
+  template <class Pred>
+    requires std::predicate<Pred&, const V&, double>
+  std::size_t add_group_where(std::string name, Pred pred,
+                              std::vector<std::uint32_t> wall_indices = {}) {
+    std::vector<std::int64_t> ids;
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      if (pred(particles_.position[i], particles_.radius[i])) ids.push_back(particles_.id[i]);
+    return add_group(std::move(name), std::move(ids), std::move(wall_indices));
+  }
+  /// The group of this name (throws InputError naming the known groups otherwise).
+  const Group& group(const std::string& name) const { return cond_.groups[cond_.find(name)]; }
+  /// Current indices of the active particles of a group.
+  const std::vector<std::uint32_t>& group_indices(const std::string& name) {
+    ensure_groups();
+    return cond_.members[cond_.find(name)];
+  }
+
+  /// Initial condition: sets the velocity [m/s] and angular velocity [rad/s] of the group's
+  /// particles now.
+  void set_velocity(const std::string& group, const V& v, const A& w = zero<A>()) {
+    const std::string obj = "Simulation::set_velocity (group '" + group + "')";
+    detail::require(all_finite(v), obj, "velocity", to_text(v), "finite components");
+    detail::require(all_finite(w), obj, "omega", "(non-finite)", "finite components");
+    for (const auto i : group_indices(group)) {
+      particles_.velocity[i] = v;
+      particles_.omega[i] = w;
+    }
+    for (auto& s : pending_)
+      if (in_group(group, s.id)) {
+        s.velocity = v;
+        s.omega = w;
+      }
+    cond_.restrain_velocities(particles_);
+  }
+  /// Initial condition: sets the temperature [K] of the group's particles now.
+  void set_temperature(const std::string& group, double temperature) {
+    static_assert(thermal, "grain::Simulation::set_temperature: particles have temperatures only "
+                           "when the Interaction has a conduction model");
+    detail::require(std::isfinite(temperature) && temperature >= 0,
+                    "Simulation::set_temperature (group '" + group + "')", "temperature",
+                    temperature, "[0, inf) K");
+    if constexpr (thermal) {
+      for (const auto i : group_indices(group)) particles_.temperature[i] = temperature;
+      for (auto& s : pending_)
+        if (in_group(group, s.id)) s.temperature = temperature;
+    }
+  }
+
+  /// Prescribed force [N] on each particle of the group (summed with every other load).
+  void prescribe_force(const std::string& group, VectorTimeFunction<D> f) {
+    cond_.forces.push_back({cond_.find(group), std::move(f)});
+  }
+  /// Prescribed torque [N m] on each particle of the group.
+  void prescribe_torque(const std::string& group, AngularTimeFunction<D> f) {
+    cond_.torques.push_back({cond_.find(group), std::move(f)});
+  }
+  /// Prescribed heat flux [W/m^2] into each particle of the group, times its surface.
+  void prescribe_heat_flux(const std::string& group, TimeFunction q) {
+    static_assert(thermal, "grain::Simulation::prescribe_heat_flux needs a thermal simulation: "
+                           "give the Interaction a conduction model");
+    cond_.heat_fluxes.push_back({cond_.find(group), std::move(q)});
+  }
+  /// Prescribed heat rate [W] into each particle of the group.
+  void prescribe_heat_rate(const std::string& group, TimeFunction q) {
+    static_assert(thermal, "grain::Simulation::prescribe_heat_rate needs a thermal simulation: "
+                           "give the Interaction a conduction model");
+    cond_.heat_rates.push_back({cond_.find(group), std::move(q)});
+  }
+  /// Fixed velocity [m/s] of the group's particles (while the function is active) and walls
+  /// (their translational velocity, 0 while inactive).
+  void fix_velocity(const std::string& group, VectorTimeFunction<D> v) {
+    prescribe_motion(group, std::move(v), std::nullopt, "vv");
+  }
+  /// Fixed angular velocity [rad/s] of the group's particles (while active) and walls (about
+  /// their pivot).
+  void fix_omega(const std::string& group, AngularTimeFunction<D> w) {
+    prescribe_motion(group, std::nullopt, std::move(w), "vv");
+  }
+  /// Fixed temperature [K] of the group's particles (while the function is active) and walls.
+  void fix_temperature(const std::string& group, TimeFunction T) {
+    static_assert(thermal, "grain::Simulation::fix_temperature needs a thermal simulation: give "
+                           "the Interaction a conduction model");
+    const auto g = cond_.find(group);
+    for (auto& w : group_walls(g)) {
+      walls_[w].options.temperature = T;
+      walls_[w].temperature = std::numeric_limits<double>::quiet_NaN();
+      walls_[w].update_temperature(time_);
+    }
+    cond_.temperatures.push_back({g, std::move(T)});
+    groups_dirty_ = true;
+  }
+  /// Prescribed motion (the third seed's PRESCRIBE): a linear and an angular history, each
+  /// optional, read as velocities or accelerations by `kind` ("vv", "va", "av", "aa"; linear
+  /// first). Walls of the group take velocity histories as their velocities.
+  void prescribe_motion(const std::string& group, std::optional<VectorTimeFunction<D>> linear,
+                        std::optional<AngularTimeFunction<D>> angular,
+                        std::string_view kind = "vv") {
+    const auto [lk, ak] = motion_kinds(kind);
+    const auto g = cond_.find(group);
+    if (!linear && !angular)
+      throw InputError("Simulation::prescribe_motion (group '" + group +
+                       "'): linear = angular = none is invalid; valid: at least one history");
+    for (auto w : group_walls(g)) {
+      if ((linear && lk == MotionKind::acceleration) || (angular && ak == MotionKind::acceleration))
+        throw InputError("Simulation::prescribe_motion (group '" + group + "'): kind = '" +
+                         std::string(kind) + "' is invalid for wall '" + walls_[w].options.name +
+                         "'; valid for walls: velocities ('vv')");
+      if (linear) walls_[w].velocity_function = *linear;
+      if (angular) walls_[w].omega_function = *angular;
+      walls_[w].update_motion(time_);
+    }
+    if (linear) cond_.linear_motion.push_back({g, std::move(*linear), lk});
+    if (angular) cond_.angular_motion.push_back({g, std::move(*angular), ak});
+    groups_dirty_ = true;
+  }
+  /// Restrains the motion of the group's particles along up to D linear directions and the
+  /// rotation about up to 3 axes (3D; in 2D any non-zero entry restrains the rotation): the
+  /// velocity, force, angular velocity and torque components along them are removed.
+  void restrain(const std::string& group, const std::vector<V>& linear,
+                const std::vector<A>& angular = {}) {
+    const std::string obj = "Simulation::restrain (group '" + group + "')";
+    typename detail::ConditionSet<D>::RestraintOn r;
+    r.group = cond_.find(group);
+    r.linear = detail::orthonormal<D>(linear, obj, "linear");
+    if constexpr (D == 3) {
+      r.angular = detail::orthonormal<3>(angular, obj, "angular");
+    } else {
+      for (double a : angular) {
+        detail::require(std::isfinite(a) && a != 0.0, obj, "angular direction", a,
+                        "a non-zero number (the z axis)");
+        r.rotation = true;
+      }
+    }
+    cond_.restraints.push_back(std::move(r));
+    groups_dirty_ = true;
+    ensure_groups();
+    cond_.restrain_velocities(particles_);
+  }
+
+  // ---------------------------------------------------------------- lifecycle
+  /// Particles whose centre leaves this region are removed (with their contacts), while
+  /// t_begin <= t <= t_end [s].
+  void set_bounding_box(const Region<D>& region,
+                        double t_begin = -std::numeric_limits<double>::infinity(),
+                        double t_end = std::numeric_limits<double>::infinity()) {
+    TimedRegion<D> r{region, t_begin, t_end};
+    r.validate("Simulation::set_bounding_box");
+    bounding_box_ = r;
+  }
+  /// Particles whose centre enters this region are removed, while t_begin <= t <= t_end [s].
+  void add_sink(const Region<D>& region,
+                double t_begin = -std::numeric_limits<double>::infinity(),
+                double t_end = std::numeric_limits<double>::infinity()) {
+    TimedRegion<D> r{region, t_begin, t_end};
+    r.validate("Simulation::add_sink " + std::to_string(sinks_.size()));
+    sinks_.push_back(r);
+  }
+  /// Ids of the particles removed so far (bounding box, sinks, destruction time), in order.
+  const std::vector<std::int64_t>& removed_ids() const { return removed_ids_; }
+  /// Particles added with a creation time still in the future.
+  std::size_t inactive_count() const { return pending_.size(); }
+  /// True if a particle with this id is active (present in the arrays).
+  bool is_active(std::int64_t id) const {
+    return std::find(particles_.id.begin(), particles_.id.end(), id) != particles_.id.end();
   }
 
   // ---------------------------------------------------------------- time step
   /// Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest particle [s].
   double rayleigh_time() const {
     double t = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-      const Material& m = materials_[particles_.material[i]];
+    for_each_size([&](double r, std::uint32_t k, double) {
+      const Material& m = materials_[k];
       const double g = m.shear_modulus();
-      t = std::min(t, std::numbers::pi * particles_.radius[i] * std::sqrt(m.density / g) /
-                          (0.1631 * m.poisson + 0.8766));
-    }
+      t = std::min(t, std::numbers::pi * r * std::sqrt(m.density / g) / (0.1631 * m.poisson + 0.8766));
+    });
     return t;
   }
 
   /// Contact-stiffness limit 2 sqrt(m*/k) of the stiffest, lightest contact that can occur [s]
   /// (the stability limit of the undamped oscillator for the symplectic schemes).
   double contact_time_step() const {
-    if (particles_.size() == 0) return std::numeric_limits<double>::infinity();
+    if (particles_.size() + pending_.size() == 0) return std::numeric_limits<double>::infinity();
     const double v = reference_speed();
     double t = std::numeric_limits<double>::infinity();
     // smallest particle of each material
     const auto nm = materials_.size();
     std::vector<double> rmin(nm, std::numeric_limits<double>::infinity()), mmin(nm, 0.0);
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-      const auto k = particles_.material[i];
-      if (particles_.radius[i] < rmin[k]) {
-        rmin[k] = particles_.radius[i];
-        mmin[k] = particles_.mass[i];
+    for_each_size([&](double r, std::uint32_t k, double mass) {
+      if (r < rmin[k]) {
+        rmin[k] = r;
+        mmin[k] = mass;
       }
-    }
+    });
     std::vector<bool> wall_material(nm, false);
     for (const auto& w : walls_) wall_material[w.options.material] = true;
     for (std::size_t a = 0; a < nm; ++a) {
@@ -384,12 +632,10 @@ public:
   double thermal_time_step() const {
     double t = std::numeric_limits<double>::infinity();
     if constexpr (thermal) {
-      for (std::size_t i = 0; i < particles_.size(); ++i) {
-        const Material& m = materials_[particles_.material[i]];
-        if (m.conductivity > 0)
-          t = std::min(t, particles_.radius[i] * particles_.radius[i] * m.density *
-                              m.heat_capacity / m.conductivity);
-      }
+      for_each_size([&](double r, std::uint32_t k, double) {
+        const Material& m = materials_[k];
+        if (m.conductivity > 0) t = std::min(t, r * r * m.density * m.heat_capacity / m.conductivity);
+      });
     }
     return t;
   }
@@ -462,12 +708,20 @@ public:
       }
     }
     r_max_ = 0.0;
-    for (double r : particles_.radius) r_max_ = std::max(r_max_, r);
+    for_each_size([&](double r, std::uint32_t, double) { r_max_ = std::max(r_max_, r); });
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
     cutoff_ = heats() ? Contact::cutoff(params_.contact, r_max_) : 0.0;
-    for (auto& w : walls_) w.update_temperature(time_);
+    for (auto& w : walls_) {
+      w.update_temperature(time_);
+      w.update_motion(time_);
+    }
+    if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
+    origin_.clear();
     rebuild();
+    ensure_groups();
+    cond_.restrain_velocities(particles_);
+    if constexpr (thermal) cond_.fix_temperatures(particles_, time_);
     const double critical = critical_time_step();
     if (params_.time_step > 0.0) {
       if (params_.time_step > critical) {
@@ -500,7 +754,7 @@ public:
         // forces at the initial positions; histories are not advanced by this evaluation
         auto saved = history_;
         auto saved_w = wall_history_;
-        compute_forces();
+        compute_forces(time_, false);
         history_ = saved;
         wall_history_ = saved_w;
       }
@@ -515,14 +769,16 @@ public:
     const double dt = dt_;
     if constexpr (thermal)
       for (auto& w : walls_) w.update_temperature(time_);
+    ensure_groups();
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
         integrate_before(dt);
         move_walls(dt);
       }
       update_neighbors();
+      ensure_groups();
       if (heat_on_) maybe_update_cells();
-      compute_forces();
+      compute_forces(IntegratorT::drift_before_forces ? time_ + dt : time_, true);
       integrate_after(dt);
       if constexpr (!IntegratorT::drift_before_forces) move_walls(dt);
     } else {
@@ -534,8 +790,11 @@ public:
     ++step_;
     // time counts whole steps since the last initialisation (no drift from summing dt)
     time_ = static_cast<double>(step_ - step0_) * dt_ + time_offset_;
-    if constexpr (thermal)
+    if constexpr (thermal) {
       for (auto& w : walls_) w.update_temperature(time_); // current for output and queries
+      if (heats() && !cond_.temperatures.empty()) cond_.fix_temperatures(particles_, time_);
+    }
+    if (lifecycle_due()) lifecycle();
     counters_.steps += 1;
     counters_.particle_steps += static_cast<double>(particles_.size());
     counters_.wall_seconds +=
@@ -772,9 +1031,45 @@ private:
       throw InputError(obj + ": material = " + std::to_string(m) + " is invalid; valid range: [0, " +
                        std::to_string(materials_.size()) + ") (indices returned by add_material)");
   }
+  /// Visits (radius, material, mass) of every active and inactive particle.
+  template <class F>
+  void for_each_size(F&& f) const {
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      f(particles_.radius[i], particles_.material[i], particles_.mass[i]);
+    for (const auto& s : pending_)
+      f(s.radius, s.material, materials_[s.material].density * shape_.volume(s.radius));
+  }
+  bool has_particle(std::int64_t id) const {
+    if (is_active(id)) return true;
+    for (const auto& s : pending_)
+      if (s.id == id) return true;
+    return false;
+  }
+  bool in_group(const std::string& group, std::int64_t id) const {
+    const Group& g = this->group(group);
+    return g.everything || std::binary_search(g.ids.begin(), g.ids.end(), id);
+  }
+  std::vector<std::uint32_t> group_walls(std::size_t g) const {
+    if (!cond_.groups[g].everything) return cond_.groups[g].walls;
+    std::vector<std::uint32_t> all(walls_.size());
+    for (std::size_t w = 0; w < all.size(); ++w) all[w] = static_cast<std::uint32_t>(w);
+    return all;
+  }
+  /// Refreshes the current indices of the groups (after indices changed or conditions were added).
+  void ensure_groups() {
+    if (!groups_dirty_) return;
+    groups_dirty_ = false;
+    cond_.refresh(particles_.id);
+  }
+  bool has_conditions() const {
+    return cond_.any_prescribed() || !cond_.linear_motion.empty() ||
+           !cond_.angular_motion.empty() || !cond_.restraints.empty() ||
+           !cond_.temperatures.empty();
+  }
   double reference_speed() const {
     double v = 0.0;
     for (const auto& u : particles_.velocity) v = std::max(v, u.norm());
+    for (const auto& s : pending_) v = std::max(v, s.velocity.norm());
     for (const auto& w : walls_) v = std::max(v, w.options.velocity.norm());
     return std::max(params_.reference_velocity, 2.0 * v);
   }
@@ -857,20 +1152,25 @@ private:
     } else {
       search::detail::build_all_pairs(p, walls_, reach, list_);
     }
-    // carry the histories of the old list over, by particle identity
+    // carry the histories of the old list over, by particle identity (origin_ maps the indices
+    // after a removal or activation to those of the old list)
     if constexpr (!Contact::template stateless<D>) {
       history_.assign(list_.partners.size(), History{});
       wall_history_.assign(list_.walls.size(), History{});
-      if (old.rows() == n) {
+      const bool mapped = !origin_.empty();
+      if (old.rows() == n || (mapped && old.rows() > 0)) {
         auto old_of = [&](std::size_t k) -> std::uint32_t {
-          return perm.empty() ? static_cast<std::uint32_t>(k) : perm[k];
+          const std::size_t k0 = perm.empty() ? k : perm[k];
+          return mapped ? origin_[k0] : static_cast<std::uint32_t>(k0);
         };
         const long nl = static_cast<long>(n);
 #pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
         for (long i = 0; i < nl; ++i) {
           const std::uint32_t a = old_of(static_cast<std::size_t>(i));
+          if (a == none) continue;
           for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
             const std::uint32_t b = old_of(list_.partners[e]);
+            if (b == none) continue;
             const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
             const auto first = old.partners.begin() + old.offsets[lo];
             const auto last = old.partners.begin() + old.offsets[lo + 1];
@@ -900,6 +1200,8 @@ private:
     for (auto& w : walls_) w.take_snapshot();
     steps_since_rebuild_ = 0;
     ++counters_.rebuilds;
+    if (!perm.empty() || !origin_.empty()) groups_dirty_ = true;
+    origin_.clear();
     if (heat_on_) update_cells();
   }
 
@@ -910,7 +1212,9 @@ private:
   /// integrate the half-step velocity that moved the particles (ContactGeometry::slip_velocity).
   static constexpr bool predicts_velocity = IntegratorT::drift_before_forces;
 
-  void compute_forces() {
+  /// Forces, torques (and heat rates) at time t; `in_step` = called by step() (prescribed motion
+  /// of the step is known).
+  void compute_forces(double t, bool in_step) {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
     if constexpr (predicts_velocity) {
@@ -929,6 +1233,10 @@ private:
       p.torque[i] = zero<A>();
       if constexpr (thermal) p.heat_rate[i] = 0.0;
     }
+    if constexpr (predicts_velocity) {
+      if (in_step && cond_.any_control())
+        cond_.predict(p, vf_, Contact::has_torque ? &wf_ : nullptr, time_, dt_);
+    }
     // deterministic chunks: the chunk length depends on N and the list span only
     const long span = static_cast<long>(list_.max_span);
     const long chunk = std::max({span, (n + 63) / 64, 1L});
@@ -940,15 +1248,47 @@ private:
         for (long i = c * chunk; i < end; ++i) contact_row(static_cast<std::size_t>(i));
       }
     }
-    const V g = params_.gravity;
-    const double ct = params_.damping_translational, cr = params_.damping_rotational;
+    if (gravity_fn_) gravity_now_ = (*gravity_fn_)(t);
+    const V g = gravity();
+    double ct = params_.damping_translational, cr = params_.damping_rotational;
+    if (damping_fn_) {
+      ct = damping_fn_->first(t);
+      cr = damping_fn_->second(t);
+    }
+    if (!mass_damping_) {
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i) {
-      p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
-      if constexpr (Contact::has_torque) p.torque[i] -= cr * force_omega()[i];
+      for (long i = 0; i < n; ++i) {
+        p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
+        if constexpr (Contact::has_torque) p.torque[i] -= cr * force_omega()[i];
+      }
+    } else {
+      const V dv = mass_damping_->first(t);
+      const A dw = mass_damping_->second(t);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) {
+        const V& v = force_velocity()[i];
+        p.force[i] += p.mass[i] * (g - dv.cwiseProduct(v)) - ct * v;
+        if constexpr (Contact::has_torque) {
+          const A& w = force_omega()[i];
+          if constexpr (D == 2)
+            p.torque[i] -= cr * w + p.inertia[i] * dw * w;
+          else
+            p.torque[i] -= cr * w + p.inertia[i] * dw.cwiseProduct(w);
+        }
+      }
     }
     if (heat_on_) add_convection();
+    if (cond_.any_prescribed()) {
+      cond_.add_loads(p, t);
+      if constexpr (thermal)
+        if (heat_on_) cond_.add_heat(p, t, [&](double r) { return surface_area(r); });
+    }
+    if (cond_.any_control()) cond_.restrain_loads(p);
   }
+
+  /// Surface of a particle of radius r [m^2] (a 2D disk: its lateral surface, perimeter times
+  /// thickness; a sphere-mass disk: a sphere's).
+  double surface_area(double r) const { return shape_.surface(r); }
 
   const std::vector<V>& force_velocity() const {
     if constexpr (predicts_velocity) return vf_;
@@ -1161,6 +1501,8 @@ private:
       for (const auto& c : static_walls_)
         p.heat_rate[c.i] += c.conductance * (walls_[c.j].temperature - p.temperature[c.i]);
       add_convection();
+      if (!cond_.heat_fluxes.empty() || !cond_.heat_rates.empty())
+        cond_.add_heat(p, time_, [&](double r) { return surface_area(r); });
     }
   }
 
@@ -1187,6 +1529,8 @@ private:
   void integrate_before(double dt) {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
+    const bool control = cond_.any_control();
+    if (control) cond_.save(p, time_, dt);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
@@ -1198,10 +1542,14 @@ private:
         rotate(p.orientation[i], p.omega[i], dt);
       }
     }
+    if (control) cond_.drift(p, time_, dt, true, rotator());
   }
   void integrate_after(double dt) {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
+    const bool control = cond_.any_control();
+    if constexpr (!IntegratorT::drift_before_forces)
+      if (control) cond_.save(p, time_, dt);
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
@@ -1213,10 +1561,118 @@ private:
         rotate(p.orientation[i], p.omega[i], dt);
       }
     }
+    if (control) {
+      if constexpr (IntegratorT::drift_before_forces)
+        cond_.finish(p, time_, dt);
+      else
+        cond_.drift(p, time_, dt, false, rotator());
+    }
   }
+  static auto rotator() {
+    return [](Orientation<D>& q, const A& w, double h) { rotate(q, w, h); };
+  }
+  /// Walls move over [t, t + dt] with their velocities at mid-step and end with those at t + dt.
   void move_walls(double dt) {
-    for (auto& w : walls_) w.move(dt);
+    for (auto& w : walls_) {
+      w.update_motion(time_ + 0.5 * dt);
+      w.move(dt);
+      w.update_motion(time_ + dt);
+    }
   }
+
+  // ---------------------------------------------------------------- lifecycle
+  bool lifecycle_due() const {
+    return !pending_.empty() || !doomed_.empty() || bounding_box_ || !sinks_.empty();
+  }
+  /// Removes the particles that left the bounding box, entered a sink or reached their
+  /// destruction time, and activates those whose creation time has come.
+  void lifecycle() {
+    auto& p = particles_;
+    const std::size_t n = p.size();
+    std::vector<char> gone(n, 0);
+    bool any = false;
+    const double t = time_;
+    const bool box = bounding_box_ && bounding_box_->active(t);
+    bool sink = false;
+    for (const auto& k : sinks_) sink = sink || k.active(t);
+    if (box || sink) {
+      for (std::size_t i = 0; i < n; ++i) {
+        bool out = box && !bounding_box_->contains(p.position[i]);
+        for (const auto& k : sinks_)
+          if (!out && k.active(t) && k.contains(p.position[i])) out = true;
+        if (out) gone[i] = 1;
+        any = any || out;
+      }
+    }
+    if (!doomed_.empty()) {
+      std::vector<std::int64_t> due;
+      std::erase_if(doomed_, [&](const std::pair<double, std::int64_t>& d) {
+        if (d.first > t) return false;
+        due.push_back(d.second);
+        return true;
+      });
+      if (!due.empty()) {
+        std::sort(due.begin(), due.end());
+        for (std::size_t i = 0; i < n; ++i)
+          if (std::binary_search(due.begin(), due.end(), p.id[i])) {
+            gone[i] = 1;
+            any = true;
+          }
+        // inactive particles whose life ends before they start never appear
+        std::erase_if(pending_, [&](const ParticleSpec<D>& s) {
+          return std::binary_search(due.begin(), due.end(), s.id);
+        });
+      }
+    }
+    std::vector<std::uint32_t> kept;
+    if (any) {
+      kept.reserve(n);
+      std::vector<std::int64_t> now_removed;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (gone[i])
+          now_removed.push_back(p.id[i]);
+        else
+          kept.push_back(static_cast<std::uint32_t>(i));
+      }
+      removed_ids_.insert(removed_ids_.end(), now_removed.begin(), now_removed.end());
+      std::sort(now_removed.begin(), now_removed.end());
+      std::erase_if(doomed_, [&](const std::pair<double, std::int64_t>& d) {
+        return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
+      });
+      p.permute(kept);
+    }
+    bool born = false;
+    if (!pending_.empty()) {
+      if (!any) {
+        kept.resize(n);
+        for (std::size_t i = 0; i < n; ++i) kept[i] = static_cast<std::uint32_t>(i);
+      }
+      std::vector<ParticleSpec<D>> still;
+      for (const auto& s : pending_) {
+        if (s.creation_time <= t) {
+          append_particle(s);
+          kept.push_back(none);
+          born = true;
+        } else {
+          still.push_back(s);
+        }
+      }
+      pending_.swap(still);
+    }
+    if (!any && !born) return;
+    origin_ = std::move(kept);
+    groups_dirty_ = true;
+    rebuild();
+    ensure_groups();
+    if (born) {
+      cond_.restrain_velocities(p);
+      if constexpr (thermal)
+        if (heats()) cond_.fix_temperatures(p, t);
+    }
+    if constexpr (thermal)
+      if (analysis() == Analysis::thermal) store_conductances();
+  }
+  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
 
   Params params_;
   Shape shape_;
@@ -1246,6 +1702,22 @@ private:
   long step0_ = 0; ///< step count at the last initialisation (time is counted from there)
   std::int64_t next_id_ = 0;
   bool initialized_ = false;
+  // groups and conditions
+  detail::ConditionSet<D> cond_;
+  bool groups_dirty_ = true;
+  std::optional<VectorTimeFunction<D>> gravity_fn_;
+  V gravity_now_ = V::Zero();
+  std::optional<std::pair<TimeFunction, TimeFunction>> damping_fn_;
+  std::optional<std::pair<VectorTimeFunction<D>, AngularTimeFunction<D>>> mass_damping_;
+  // lifecycle
+  std::optional<TimedRegion<D>> bounding_box_;
+  std::vector<TimedRegion<D>> sinks_;
+  std::vector<ParticleSpec<D>> pending_;                 ///< inactive until their creation time
+  std::vector<std::pair<double, std::int64_t>> doomed_;  ///< (destruction time, id)
+  std::vector<std::int64_t> removed_ids_;
+  /// After removal / activation: the index in the neighbour list's arrays of the particle now at
+  /// index k (`none` for a new one); empty = unchanged indices.
+  std::vector<std::uint32_t> origin_;
   RunCounters counters_;
 };
 

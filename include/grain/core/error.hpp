@@ -34,6 +34,11 @@ void require(bool ok, const std::string& object, const char* name, const T& valu
     throw InputError(object + ": " + name + " = " + to_text(value) +
                      " is invalid; valid range: " + range);
 }
+template <class T>
+void require(bool ok, const std::string& object, const char* name, const T& value,
+             const std::string& range) {
+  require(ok, object, name, value, range.c_str());
+}
 
 /// Requires a finite value strictly above zero.
 inline void require_positive(const std::string& object, const char* name, double v) {

@@ -36,6 +36,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace grain {
@@ -289,5 +290,10 @@ private:
   Vec<D> direction_ = Vec<D>::Zero();
   bool along_ = false;
 };
+
+/// An angular quantity that may change in time: a `TimeFunction` (the z component) in 2D, a
+/// `VectorTimeFunction<3>` in 3D (the counterpart of `Angular<D>`).
+template <int D>
+using AngularTimeFunction = std::conditional_t<D == 2, TimeFunction, VectorTimeFunction<3>>;
 
 } // namespace grain

@@ -33,7 +33,8 @@ struct ParticleArrays {
 
   std::size_t size() const { return id.size(); }
 
-  /// Reorders every field so that new index k holds old index perm[k].
+  /// Reorders every field so that new index k holds old index perm[k] (a shorter perm also
+  /// removes the particles it does not name).
   void permute(const std::vector<std::uint32_t>& perm) {
     apply(id, perm);
     apply(position, perm);
@@ -53,7 +54,7 @@ struct ParticleArrays {
 protected:
   template <class T>
   static void apply(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
-    std::vector<T> out(v.size());
+    std::vector<T> out(perm.size());
     for (std::size_t k = 0; k < perm.size(); ++k) out[k] = v[perm[k]];
     v.swap(out);
   }

@@ -118,6 +118,17 @@ struct Wall {
   WallGeometry<D> snapshot; ///< geometry at the last neighbour-list rebuild
   double temperature = std::numeric_limits<double>::quiet_NaN(); ///< current temperature [K]
 
+  /// Velocity [m/s] and angular velocity [rad/s] as functions of time (fixed / prescribed by a
+  /// condition); while set, they replace options.velocity / options.omega (0 while inactive).
+  std::optional<VectorTimeFunction<D>> velocity_function{};
+  std::optional<AngularTimeFunction<D>> omega_function{};
+
+  /// Sets the current velocities at time t [s] from the velocity functions, if any.
+  void update_motion(double t) {
+    if (velocity_function) options.velocity = (*velocity_function)(t);
+    if (omega_function) options.omega = (*omega_function)(t);
+  }
+
   /// True if heat crosses the wall (it has a temperature).
   bool conducts() const { return options.temperature.has_value(); }
 
