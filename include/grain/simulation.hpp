@@ -32,6 +32,7 @@
 
 #include <grain/conditions/conditions.hpp>
 #include <grain/conditions/regions.hpp>
+#include <grain/conditions/variable_property.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
@@ -46,6 +47,7 @@
 #include <grain/walls/walls.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -332,6 +334,8 @@ private:
     p.inertia.push_back(inertia);
     p.inv_inertia.push_back(s.fixed ? 0.0 : 1.0 / inertia);
     p.material.push_back(s.material);
+    if (var_pairs_)
+      for (auto& o : over_) o.push_back(std::numeric_limits<double>::quiet_NaN());
     if constexpr (thermal) {
       const double c = mass * m.heat_capacity;
       p.temperature.push_back(s.temperature);
@@ -420,9 +424,19 @@ public:
   /// The group of this name (throws InputError naming the known groups otherwise).
   const Group& group(const std::string& name) const { return cond_.groups[cond_.find(name)]; }
   /// Current indices of the active particles of a group.
-  const std::vector<std::uint32_t>& group_indices(const std::string& name) {
+  const std::vector<std::uint32_t>& group_indices(const std::string& name) const {
     ensure_groups();
     return cond_.members[cond_.find(name)];
+  }
+  /// True if particle i (current index) is moved by forces: not fixed and not under prescribed
+  /// motion (restrained particles are free in their other directions).
+  bool is_free(std::size_t i) const {
+    if (particles_.inv_mass[i] == 0.0) return false;
+    ensure_groups();
+    const auto& c = cond_.controls;
+    const auto it = std::lower_bound(c.begin(), c.end(), i,
+                                     [](const auto& x, std::size_t k) { return x.i < k; });
+    return it == c.end() || it->i != i || (it->linear < 0 && it->angular < 0);
   }
 
   /// Initial condition: sets the velocity [m/s] and angular velocity [rad/s] of the group's
@@ -579,7 +593,7 @@ public:
   double rayleigh_time() const {
     double t = std::numeric_limits<double>::infinity();
     for_each_size([&](double r, std::uint32_t k, double) {
-      const Material& m = materials_[k];
+      const Material m = bounding_material(k);
       const double g = m.shear_modulus();
       t = std::min(t, std::numbers::pi * r * std::sqrt(m.density / g) / (0.1631 * m.poisson + 0.8766));
     });
@@ -610,11 +624,12 @@ public:
         if (pair) {
           const double re = rmin[a] * rmin[b] / (rmin[a] + rmin[b]);
           const double me = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
-          const double k = Contact::stiffness_estimate(pair_properties(a, b), params_.contact, re, me, v);
+          const double k =
+              Contact::stiffness_estimate(bounding_pair(a, b), params_.contact, re, me, v);
           if (k > 0) t = std::min(t, 2.0 * std::sqrt(me / k));
         }
         if (wall_material[b]) {
-          const double k = Contact::stiffness_estimate(pair_properties(a, b), params_.contact,
+          const double k = Contact::stiffness_estimate(bounding_pair(a, b), params_.contact,
                                                        rmin[a], mmin[a], v);
           if (k > 0) t = std::min(t, 2.0 * std::sqrt(mmin[a] / k));
         }
@@ -707,8 +722,12 @@ public:
         }
       }
     }
+    apply_variable_properties(true);
     r_max_ = 0.0;
     for_each_size([&](double r, std::uint32_t, double) { r_max_ = std::max(r_max_, r); });
+    for (const auto& v : vprops_)
+      if (v.vp.property == Property::radius)
+        for (double r : v.vp.table->y()) r_max_ = std::max(r_max_, r);
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
     cutoff_ = heats() ? Contact::cutoff(params_.contact, r_max_) : 0.0;
@@ -795,6 +814,7 @@ public:
       if (heats() && !cond_.temperatures.empty()) cond_.fix_temperatures(particles_, time_);
     }
     if (lifecycle_due()) lifecycle();
+    if (!vprops_.empty()) apply_variable_properties(false);
     counters_.steps += 1;
     counters_.particle_steps += static_cast<double>(particles_.size());
     counters_.wall_seconds +=
@@ -853,6 +873,60 @@ public:
   const PairProperties& pair_properties(std::size_t a, std::size_t b) const {
     return pairs_[a * materials_.size() + b];
   }
+  /// The material of particle i (current index) with its variable properties applied.
+  Material material_of(std::size_t i) const {
+    Material m = materials_[particles_.material[i]];
+    if (var_pairs_) {
+      auto take = [&](const std::vector<double>& o, double& v) {
+        if (!std::isnan(o[i])) v = o[i];
+      };
+      take(over_[0], m.young);
+      take(over_[1], m.poisson);
+      take(over_[2], m.restitution);
+      take(over_[3], m.friction);
+      take(over_[4], m.rolling_friction);
+      take(over_[5], m.conductivity);
+      if (!std::isnan(over_[0][i]) || !std::isnan(over_[1][i])) m.shear = 0.0; // G from E, nu
+      if (!std::isnan(over_[0][i])) m.young_real = 0.0;
+      if (!std::isnan(over_[3][i])) m.friction_static = -1.0;
+    }
+    return m;
+  }
+  /// Effective properties of the contact of particle i with particle j (wall = false) or with
+  /// wall j (wall = true), with variable properties applied.
+  PairProperties contact_pair(std::size_t i, std::size_t j, bool wall) const {
+    const auto nm = materials_.size();
+    const auto mi = particles_.material[i];
+    const auto mj = wall ? walls_[j].options.material : particles_.material[j];
+    if (!var_pairs_) return pairs_[mi * nm + mj];
+    PairProperties pp = PairProperties::mix(material_of(i), wall ? materials_[mj] : material_of(j),
+                                            overrides_[mi * nm + mj]);
+    pp.fluid_conductivity = params_.fluid.conductivity;
+    return pp;
+  }
+
+  /// Adds a property that follows a table of temperature, time or speed for the particles of a
+  /// group (see conditions/variable_property.hpp); applied at initialisation and every
+  /// `every` steps while active.
+  void add_variable_property(VariableProperty vp) {
+    vp.validate();
+    const auto g = cond_.find(vp.group);
+    if (vp.variable == Variable::temperature && !thermal)
+      throw InputError(std::string("VariableProperty (") + property_name(vp.property) +
+                       "): variable = temperature is invalid without a thermal state; valid: "
+                       "time or speed (or give the Interaction a conduction model)");
+    if constexpr (!thermal)
+      if (vp.property == Property::heat_capacity || vp.property == Property::conductivity)
+        throw InputError(std::string("VariableProperty: property = ") +
+                         property_name(vp.property) +
+                         " is invalid without a thermal state; valid: mechanical properties");
+    if (is_contact_property(vp.property) && !var_pairs_) {
+      var_pairs_ = true;
+      for (auto& o : over_) o.assign(particles_.size(), std::numeric_limits<double>::quiet_NaN());
+    }
+    vprops_.push_back({std::move(vp), g});
+    initialized_ = false;
+  }
 
   /// Visits every touching contact: f(i, j_or_wall, is_wall, geometry, result), or, if f takes a
   /// sixth argument, also the heat rate into particle i through the contact [W] (0 without heat
@@ -887,14 +961,14 @@ public:
       for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
         const auto j = list_.partners[e];
         if (!touching_pair(i, j, g)) continue;
-        visit(i, j, false, pair_properties(p.material[i], p.material[j]),
-              history_at(history_, e), cell_radius_pair(e));
+        visit(i, j, false, contact_pair(i, j, false), history_at(history_, e),
+              cell_radius_pair(e));
       }
       for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
         const auto w = list_.walls[e];
         if (!touching_wall(i, w, g)) continue;
-        visit(i, w, true, pair_properties(p.material[i], walls_[w].options.material),
-              history_at(wall_history_, e), cell_radius_wall(e));
+        visit(i, w, true, contact_pair(i, w, true), history_at(wall_history_, e),
+              cell_radius_wall(e));
       }
     }
   }
@@ -921,7 +995,7 @@ public:
           double H = 0.0;
           if (touching_pair(i, j, g)) {
             at_rest(g);
-            const auto& pair = pair_properties(p.material[i], p.material[j]);
+            const PairProperties pair = contact_pair(i, j, false);
             History h = history_at(history_, e);
             auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
             H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_, length(),
@@ -937,7 +1011,7 @@ public:
           double H = 0.0;
           if (touching_wall(i, w, g)) {
             at_rest(g);
-            const auto& pair = pair_properties(p.material[i], walls_[w].options.material);
+            const PairProperties pair = contact_pair(i, w, true);
             History h = history_at(wall_history_, e);
             auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
             H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_, length(),
@@ -1032,12 +1106,48 @@ private:
                        std::to_string(materials_.size()) + ") (indices returned by add_material)");
   }
   /// Visits (radius, material, mass) of every active and inactive particle.
+  /// With variable properties, the smallest radius and density and the largest Young's modulus
+  /// their tables reach bound these values (for the time step).
   template <class F>
   void for_each_size(F&& f) const {
+    double rb = std::numeric_limits<double>::infinity();
+    bool bounded = false;
+    for (const auto& v : vprops_) {
+      if (v.vp.property == Property::radius)
+        for (double y : v.vp.table->y()) rb = std::min(rb, y);
+      bounded = bounded || v.vp.property == Property::radius || v.vp.property == Property::density;
+    }
+    auto visit = [&](double r, std::uint32_t k, double mass) {
+      if (bounded) {
+        const double r2 = std::min(r, rb);
+        mass = std::min(mass * shape_.volume(r2) / shape_.volume(r),
+                        bounding_material(k).density * shape_.volume(r2));
+        r = r2;
+      }
+      f(r, k, mass);
+    };
     for (std::size_t i = 0; i < particles_.size(); ++i)
-      f(particles_.radius[i], particles_.material[i], particles_.mass[i]);
+      visit(particles_.radius[i], particles_.material[i], particles_.mass[i]);
     for (const auto& s : pending_)
-      f(s.radius, s.material, materials_[s.material].density * shape_.volume(s.radius));
+      visit(s.radius, s.material, materials_[s.material].density * shape_.volume(s.radius));
+  }
+  Material bounding_material(std::uint32_t k) const {
+    Material m = materials_[k];
+    for (const auto& v : vprops_) {
+      const auto& y = v.vp.table->y();
+      if (v.vp.property == Property::young) {
+        m.young = std::max(m.young, *std::max_element(y.begin(), y.end()));
+        m.shear = 0.0;
+      } else if (v.vp.property == Property::density) {
+        m.density = std::min(m.density, *std::min_element(y.begin(), y.end()));
+      }
+    }
+    return m;
+  }
+  PairProperties bounding_pair(std::uint32_t a, std::uint32_t b) const {
+    if (vprops_.empty()) return pair_properties(a, b);
+    return PairProperties::mix(bounding_material(a), bounding_material(b),
+                               overrides_[a * materials_.size() + b]);
   }
   bool has_particle(std::int64_t id) const {
     if (is_active(id)) return true;
@@ -1056,7 +1166,7 @@ private:
     return all;
   }
   /// Refreshes the current indices of the groups (after indices changed or conditions were added).
-  void ensure_groups() {
+  void ensure_groups() const {
     if (!groups_dirty_) return;
     groups_dirty_ = false;
     cond_.refresh(particles_.id);
@@ -1147,6 +1257,8 @@ private:
       if (params_.search.sort && n > 1) {
         perm = search::detail::cell_order(p, 2.0 * r_max_ + reach);
         p.permute(perm);
+        if (var_pairs_)
+          for (auto& o : over_) permute_values(o, perm);
       }
       search::detail::build_cells(p, walls_, reach, r_max_, list_);
     } else {
@@ -1202,7 +1314,114 @@ private:
     ++counters_.rebuilds;
     if (!perm.empty() || !origin_.empty()) groups_dirty_ = true;
     origin_.clear();
+    if (var_pairs_) refresh_pair_cache();
     if (heat_on_) update_cells();
+  }
+
+  static void permute_values(std::vector<double>& v, const std::vector<std::uint32_t>& perm) {
+    std::vector<double> out(perm.size());
+    for (std::size_t k = 0; k < perm.size(); ++k) out[k] = v[perm[k]];
+    v.swap(out);
+  }
+
+  /// Contact constants of every list entry from the particles' current properties.
+  void refresh_pair_cache() {
+    const auto& p = particles_;
+    const std::size_t n = p.size();
+    std::vector<Material> eff(n);
+    for (std::size_t i = 0; i < n; ++i) eff[i] = material_of(i);
+    pair_cache_.resize(list_.partners.size());
+    wall_pair_cache_.resize(list_.walls.size());
+    const auto nm = materials_.size();
+    const long nl = static_cast<long>(n);
+#pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
+    for (long i = 0; i < nl; ++i) {
+      const auto mi = p.material[i];
+      for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+        const auto j = list_.partners[e];
+        pair_cache_[e] = PairProperties::mix(eff[i], eff[j], overrides_[mi * nm + p.material[j]]);
+        pair_cache_[e].fluid_conductivity = params_.fluid.conductivity;
+      }
+      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+        const auto mw = walls_[list_.walls[e]].options.material;
+        wall_pair_cache_[e] = PairProperties::mix(eff[i], materials_[mw], overrides_[mi * nm + mw]);
+        wall_pair_cache_[e].fluid_conductivity = params_.fluid.conductivity;
+      }
+    }
+  }
+
+  /// Applies the variable properties that are due (all active ones if `all`) at the current time;
+  /// returns true if something changed.
+  bool apply_variable_properties(bool all) {
+    if (vprops_.empty()) return false;
+    ensure_groups();
+    auto& p = particles_;
+    bool radius = false, contact = false, any = false;
+    for (const auto& [vp, g] : vprops_) {
+      if (!vp.active(time_) || (!all && step_ % vp.every != 0)) continue;
+      any = true;
+      const Table& tab = *vp.table;
+      std::size_t hint = 0;
+      for (const auto i : cond_.members[g]) {
+        double x = 0.0;
+        switch (vp.variable) {
+        case Variable::temperature:
+          if constexpr (thermal) x = p.temperature[i];
+          break;
+        case Variable::time: x = time_; break;
+        case Variable::speed: x = p.velocity[i].norm(); break;
+        }
+        const double y = tab(x, hint);
+        const double vol = shape_.volume(p.radius[i]);
+        const double density = p.mass[i] / vol;
+        [[maybe_unused]] double c = 0.0; // specific heat capacity, kept
+        if constexpr (thermal) c = p.heat_capacity[i] / p.mass[i];
+        auto set_mass = [&](double mass) {
+          p.mass[i] = mass;
+          if (p.inv_mass[i] != 0.0) p.inv_mass[i] = 1.0 / mass;
+          p.inertia[i] = shape_.inertia_factor() * mass * p.radius[i] * p.radius[i];
+          if (p.inv_inertia[i] != 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
+          if constexpr (thermal) {
+            p.heat_capacity[i] = mass * c;
+            if (p.inv_heat_capacity[i] != 0.0) p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
+          }
+        };
+        switch (vp.property) {
+        case Property::radius:
+          if (y != p.radius[i]) {
+            p.radius[i] = y;
+            set_mass(density * shape_.volume(y));
+            radius = true;
+          }
+          break;
+        case Property::density: set_mass(y * vol); break;
+        case Property::heat_capacity:
+          if constexpr (thermal) {
+            p.heat_capacity[i] = p.mass[i] * y;
+            p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
+          }
+          break;
+        case Property::young: over_[0][i] = y; contact = true; break;
+        case Property::poisson: over_[1][i] = y; contact = true; break;
+        case Property::restitution: over_[2][i] = y; contact = true; break;
+        case Property::friction: over_[3][i] = y; contact = true; break;
+        case Property::rolling_friction: over_[4][i] = y; contact = true; break;
+        case Property::conductivity: over_[5][i] = y; contact = true; break;
+        }
+      }
+    }
+    if (radius) {
+      // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
+      for (double r : p.radius) r_max_ = std::max(r_max_, r);
+      skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
+      if (heats()) cutoff_ = Contact::cutoff(params_.contact, r_max_);
+      if (initialized_) rebuild();
+    } else if (contact && initialized_) {
+      refresh_pair_cache();
+    }
+    if constexpr (thermal)
+      if (any && initialized_ && analysis() == Analysis::thermal) store_conductances();
+    return any;
   }
 
   // ---------------------------------------------------------------- forces
@@ -1322,7 +1541,8 @@ private:
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
-      const auto& pair = pairs_[p.material[i] * materials_.size() + p.material[j]];
+      const auto& pair =
+          var_pairs_ ? pair_cache_[e] : pairs_[p.material[i] * materials_.size() + p.material[j]];
       History& h = hist(history_, e);
       auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
       p.force[i] += r.force;
@@ -1355,7 +1575,9 @@ private:
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
-      const auto& pair = pairs_[p.material[i] * materials_.size() + walls_[w].options.material];
+      const auto& pair = var_pairs_ ? wall_pair_cache_[e]
+                                    : pairs_[p.material[i] * materials_.size() +
+                                             walls_[w].options.material];
       History& h = hist(wall_history_, e);
       auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
       p.force[i] += r.force;
@@ -1434,8 +1656,8 @@ private:
     if (!(gap < cutoff_) || dist <= 0) return 0.0;
     gap_pair_geometry<D>(g, V(d / dist), dist, p.radius[i], p.radius[j], p.mass[i], p.mass[j]);
     History h{};
-    return Contact::gap_conductance(g, pairs_[p.material[i] * materials_.size() + p.material[j]],
-                                    params_.contact, h, dt_, length(), cell_radius_pair(e));
+    return Contact::gap_conductance(g, contact_pair(i, j, false), params_.contact, h, dt_,
+                                    length(), cell_radius_pair(e));
   }
   double gap_wall_conductance(std::size_t i, std::size_t w, std::size_t e,
                               ContactGeometry<D>& g) const {
@@ -1444,9 +1666,8 @@ private:
     if (!(prox.distance - p.radius[i] < cutoff_)) return 0.0;
     gap_wall_geometry<D>(g, prox, p.radius[i], p.mass[i]);
     History h{};
-    return Contact::gap_conductance(
-        g, pairs_[p.material[i] * materials_.size() + walls_[w].options.material], params_.contact,
-        h, dt_, length(), cell_radius_wall(e));
+    return Contact::gap_conductance(g, contact_pair(i, w, true), params_.contact, h, dt_, length(),
+                                    cell_radius_wall(e));
   }
 
   /// Convective conductance h S [W/K] of particle i: h = Nu(Re, Pr) k_f / (2R), S its surface.
@@ -1640,6 +1861,8 @@ private:
         return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
       });
       p.permute(kept);
+      if (var_pairs_)
+        for (auto& o : over_) permute_values(o, kept);
     }
     bool born = false;
     if (!pending_.empty()) {
@@ -1651,6 +1874,7 @@ private:
       for (const auto& s : pending_) {
         if (s.creation_time <= t) {
           append_particle(s);
+          p.force.back() = p.mass.back() * gravity(); // its first half kick feels its weight
           kept.push_back(none);
           born = true;
         } else {
@@ -1703,8 +1927,19 @@ private:
   std::int64_t next_id_ = 0;
   bool initialized_ = false;
   // groups and conditions
-  detail::ConditionSet<D> cond_;
-  bool groups_dirty_ = true;
+  // variable properties
+  struct VariablePropertyOn {
+    VariableProperty vp;
+    std::size_t group;
+  };
+  std::vector<VariablePropertyOn> vprops_;
+  bool var_pairs_ = false; ///< some contact property varies: contact constants per list entry
+  /// Per-particle values of young, poisson, restitution, friction, rolling_friction,
+  /// conductivity (NaN = the material's), when var_pairs_.
+  std::array<std::vector<double>, 6> over_;
+  std::vector<PairProperties> pair_cache_, wall_pair_cache_; ///< per list entry, when var_pairs_
+  mutable detail::ConditionSet<D> cond_; ///< (its indices are refreshed lazily)
+  mutable bool groups_dirty_ = true;
   std::optional<VectorTimeFunction<D>> gravity_fn_;
   V gravity_now_ = V::Zero();
   std::optional<std::pair<TimeFunction, TimeFunction>> damping_fn_;

@@ -4,3 +4,4 @@
 #include <grain/io/console.hpp>
 #include <grain/io/vtk.hpp>
 #include <grain/io/csv.hpp>
+#include <grain/io/statistics.hpp>

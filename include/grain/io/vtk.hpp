@@ -168,8 +168,7 @@ void write_contacts_vtk(const Sim& sim, const std::string& path) {
   const auto& p = sim.particles();
   sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
                            double q) {
-    const auto& pair = sim.pair_properties(
-        p.material[i], wall ? sim.walls()[j].options.material : p.material[j]);
+    const auto pair = sim.contact_pair(i, j, wall);
     using C = typename Sim::contact_type;
     const double a = C::area_model::radius(g, pair, r.normal, contact.area);
     rows.push_back({i, j, wall, g.point, r.tangent.force, r.normal.force, g.overlap, a, q});

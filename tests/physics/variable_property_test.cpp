@@ -1,0 +1,283 @@
+// Variable properties (tables of temperature, time or speed) and result statistics.
+//
+// Each case has a closed form:
+// - conductivity k(T): the steady middle temperature of a three-particle chain between two held
+//   temperatures solves k*(k(T1), k(Tm)) (T1 - Tm) = k*(k(Tm), k(T3)) (Tm - T3) (equal contact
+//   radii; Batchelor-O'Brien H = 4 k* a, k* = k1 k2/(k1 + k2));
+// - heat capacity c(T) = c0 + b T under a constant heat rate Q: m (c0 (T - T0) + b (T^2 - T0^2)/2)
+//   = Q t;
+// - Young's modulus E(t) switched before an elastic Hertz impact on a plane: the maximum overlap
+//   (15 m v^2 / (16 E* sqrt(R)))^(2/5) of the new modulus, and the same motion as a material
+//   with that modulus;
+// - radius R(t) of a particle resting on a plane: mass rho 4/3 pi R^3, inertia 0.4 m R^2, and the
+//   static Hertz overlap (3 m g / (4 E* sqrt(R)))^(2/3) of the grown particle;
+// - friction mu(t) of a block sliding on a plane (rotation restrained): dv/dt = -mu(t) g.
+// - statistics of known velocities: counts, totals, means, extremes; free particles only.
+
+#include <doctest/doctest.h>
+#include "../approx.hpp"
+#include <grain/grain.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+using namespace grain;
+using grain::test::approx;
+
+namespace {
+
+using Thermal = Interaction<normal::Hertz<>, tangent::None, rolling::None,
+                            conduction::BatchelorOBrien>;
+using ThermalSim = Simulation<Sphere, search::CellList, Thermal>;
+using HertzSim = Simulation<Sphere, search::CellList, Interaction<normal::Hertz<>, tangent::None>>;
+using FrictionSim = Simulation<Sphere, search::CellList, presets::LinearCoulomb>;
+
+constexpr double pi = std::numbers::pi;
+
+Material glass() {
+  return {.name = "glass", .density = 2500, .young = 7e10, .poisson = 0.25, .restitution = 1.0,
+          .friction = 0.0, .conductivity = 1.0, .heat_capacity = 800};
+}
+
+} // namespace
+
+TEST_CASE("variable property: a temperature-dependent conductivity sets the steady chain "
+          "temperature") {
+  // k(T) = 1 + 2 (T - 300)/100 W/(m K) between 300 and 400 K
+  auto k = [](double T) { return 1.0 + 2.0 * (T - 300.0) / 100.0; };
+  auto keff = [](double a, double b) { return a * b / (a + b); };
+  const double T1 = 400.0, T3 = 300.0;
+  // closed form: bisection on the heat balance of the middle particle
+  double lo = T3, hi = T1;
+  for (int it = 0; it < 200; ++it) {
+    const double tm = 0.5 * (lo + hi);
+    const double r = keff(k(T1), k(tm)) * (T1 - tm) - keff(k(tm), k(T3)) * (tm - T3);
+    (r > 0 ? lo : hi) = tm;
+  }
+  const double expected = 0.5 * (lo + hi);
+  REQUIRE(std::abs(expected - 350.0) > 5.0); // the variable conductivity matters
+
+  ThermalSim::Params prm;
+  prm.analysis = Analysis::thermal;
+  ThermalSim sim(prm);
+  const auto m = sim.add_material(glass());
+  const double R = 0.01, pitch = 2 * R - 1e-4; // equal overlaps: equal contact radii
+  const auto a = sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = m, .temperature = T1});
+  const auto b = sim.add_particle({.position = {pitch, 0, 0}, .radius = R, .material = m, .temperature = 320});
+  const auto c = sim.add_particle({.position = {2 * pitch, 0, 0}, .radius = R, .material = m, .temperature = T3});
+  sim.add_group("hot", {a});
+  sim.add_group("cold", {c});
+  sim.fix_temperature("hot", T1);
+  sim.fix_temperature("cold", T3);
+  sim.add_variable_property({"all", Property::conductivity, Variable::temperature,
+                             Table({{300.0, 1.0}, {400.0, 3.0}})});
+  sim.initialize();
+  // the slowest time constant C / (2 H) is some 1e3 dt: run 40 of them
+  const double H = 4.0 * keff(1.0, 1.0) * std::sqrt(0.5 * R * 1e-4);
+  const double C = glass().density * 4.0 / 3.0 * pi * R * R * R * glass().heat_capacity;
+  sim.run(40.0 * C / (2.0 * H));
+  const double tm = sim.particles().temperature[sim.index_of(b)];
+  // forward Euler's steady state is the exact one; 1e-9 K covers the residual transient
+  CHECK(tm == approx(expected).epsilon(1e-9));
+  CHECK(sim.particles().temperature[sim.index_of(a)] == T1);
+}
+
+TEST_CASE("variable property: a temperature-dependent heat capacity under a constant heat rate") {
+  ThermalSim::Params prm;
+  prm.analysis = Analysis::thermal;
+  prm.time_step = 0.01;
+  ThermalSim sim(prm);
+  const auto m = sim.add_material(glass());
+  const double R = 0.005, T0 = 300.0, Q = 2.0;
+  sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = m, .temperature = T0});
+  // c(T) = 800 + 2 (T - 300) J/(kg K)
+  sim.add_variable_property({"all", Property::heat_capacity, Variable::temperature,
+                             Table({{300.0, 800.0}, {800.0, 1800.0}})});
+  sim.prescribe_heat_rate("all", Q);
+  const double t = 200.0;
+  sim.run(t);
+  const double mass = glass().density * 4.0 / 3.0 * pi * R * R * R;
+  // m (800 (T - T0) + (T - T0)^2) = Q t
+  const double u = Q * t / mass;
+  const double expected = T0 + (-800.0 + std::sqrt(800.0 * 800.0 + 4.0 * u)) / 2.0;
+  REQUIRE(expected - T0 > 50.0);
+  // forward Euler with the capacity lagging one step: first order, dt Q/(m c) ~ 1e-2 K per step
+  CHECK(sim.particles().temperature[0] == approx(expected).epsilon(1e-4));
+  CHECK(sim.particles().heat_capacity[0] ==
+        approx(mass * (800.0 + 2.0 * (sim.particles().temperature[0] - 300.0))).epsilon(1e-4));
+}
+
+TEST_CASE("variable property: Young's modulus switched in time gives the new Hertz impact") {
+  const double E0 = 1e7, E1 = 4e7, R = 0.01, v = 0.5, gap = 0.002;
+  auto run = [&](bool variable, double& dmax) {
+    HertzSim::Params prm;
+    prm.time_step = 2e-6;
+    HertzSim sim(prm);
+    Material mp = glass();
+    mp.young = variable ? E0 : E1;
+    const auto m = sim.add_material(mp);
+    Material mw = glass();
+    mw.young = 1e6 * E1;
+    const auto w = sim.add_material(mw);
+    sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = w});
+    sim.add_particle({.position = {0, 0, R + gap}, .radius = R, .material = m, .velocity = {0, 0, -v}});
+    if (variable) // E0 until t = 1 ms, then E1 (impact at gap / v = 4 ms)
+      sim.add_variable_property({"all", Property::young, Variable::time,
+                                 Table({{0.0, E0}, {1e-3, E0}, {1.001e-3, E1}})});
+    dmax = 0.0;
+    for (int k = 0; k < 8000; ++k) {
+      sim.step();
+      dmax = std::max(dmax, R - sim.particles().position[0].z());
+    }
+    return sim.particles().velocity[0].z();
+  };
+  double d_var = 0, d_ref = 0;
+  const double v_var = run(true, d_var), v_ref = run(false, d_ref);
+  const double nu = glass().poisson;
+  const double Es = 1.0 / ((1 - nu * nu) / E1 + (1 - nu * nu) / (1e6 * E1));
+  const double mass = glass().density * 4.0 / 3.0 * pi * R * R * R;
+  const double expected = std::pow(15.0 * mass * v * v / (16.0 * Es * std::sqrt(R)), 0.4);
+  // sampled peak at dt = t_c / ~100: within 1e-3
+  CHECK(d_var == approx(expected).epsilon(1e-3));
+  // the same motion as a particle made of the new material (per-contact mixing = material mixing)
+  CHECK(d_var == approx(d_ref).epsilon(1e-12));
+  CHECK(v_var == approx(v_ref).epsilon(1e-12));
+  CHECK(v_var == approx(v).epsilon(1e-3)); // elastic rebound
+}
+
+TEST_CASE("variable property: a growing particle on a plane takes the new mass and overlap") {
+  HertzSim::Params prm;
+  prm.time_step = 1e-6;
+  prm.gravity = Vec3(0, 0, -9.81);
+  prm.damping_translational = 0.05; // settles within the run
+  HertzSim sim(prm);
+  Material mp = glass();
+  mp.young = 1e7;
+  mp.restitution = 0.3; // damped: at rest long before the end
+  const auto m = sim.add_material(mp);
+  const auto w = sim.add_material(mp);
+  sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = w});
+  const double R0 = 0.004, R1 = 0.005;
+  sim.add_particle({.position = {0, 0, R0}, .radius = R0, .material = m});
+  sim.add_variable_property({"all", Property::radius, Variable::time,
+                             Table({{0.0, R0}, {0.05, R1}}), 10});
+  sim.run(0.3);
+  const auto& p = sim.particles();
+  const double mass = mp.density * 4.0 / 3.0 * pi * R1 * R1 * R1;
+  CHECK(p.radius[0] == R1);
+  CHECK(p.mass[0] == approx(mass).epsilon(1e-12));
+  CHECK(p.inertia[0] == approx(0.4 * mass * R1 * R1).epsilon(1e-12));
+  const double Es = 1.0 / (2.0 * (1 - mp.poisson * mp.poisson) / mp.young);
+  const double delta = std::pow(3.0 * mass * 9.81 / (4.0 * Es * std::sqrt(R1)), 2.0 / 3.0);
+  // at rest: the overlap of the static Hertz balance within 1e-3 (residual oscillation)
+  CHECK(R1 - p.position[0].z() == approx(delta).epsilon(1e-3));
+}
+
+TEST_CASE("variable property: friction changing in time decelerates a sliding block as mu(t) g") {
+  FrictionSim::Params prm;
+  prm.time_step = 2e-6;
+  prm.gravity = Vec3(0, 0, -9.81);
+  FrictionSim sim(prm);
+  Material mp = glass();
+  mp.young = 1e7;
+  mp.restitution = 0.3;
+  mp.friction = 0.2;
+  const auto m = sim.add_material(mp);
+  sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m});
+  const double R = 0.005, g = 9.81;
+  const double delta = std::pow(3.0 * mp.density * 4.0 / 3.0 * pi * R * R * R * g /
+                                    (4.0 * mp.young / (2.0 * (1 - mp.poisson * mp.poisson)) *
+                                     std::sqrt(R)),
+                                2.0 / 3.0);
+  sim.add_particle({.position = {0, 0, R - delta}, .radius = R, .material = m, .velocity = {1.0, 0, 0}});
+  sim.restrain("all", {}, {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}); // a block: no rolling
+  // mu = 0.2 until 0.1 s, then 0.4 (both the particle's and the wall's: the pair mean)
+  sim.add_variable_property({"all", Property::friction, Variable::time,
+                             Table({{0.0, 0.2}, {0.1, 0.2}, {0.1001, 0.4}})});
+  sim.run(0.1);
+  const double v1 = sim.particles().velocity[0].x();
+  sim.run(0.1);
+  const double v2 = sim.particles().velocity[0].x();
+  // mean friction of the pair: (0.2 + 0.2)/2, then (0.4 + 0.2)/2 (the wall keeps its material)
+  CHECK(1.0 - v1 == approx(0.2 * g * 0.1).epsilon(2e-2));
+  CHECK(v1 - v2 == approx(0.3 * g * 0.1).epsilon(2e-2));
+  CHECK(std::abs(sim.particles().omega[0].norm()) <= 1e-12);
+}
+
+TEST_CASE("variable property: bad tables and variables are named") {
+  ThermalSim sim;
+  sim.add_material(glass());
+  CHECK_THROWS_WITH_AS(sim.add_variable_property({"all", Property::radius, Variable::time,
+                                                  Table({{0.0, 0.01}, {1.0, -0.01}}, "growth")}),
+                       doctest::Contains("Table 'growth' y[1] = -0.01 is invalid for radius"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(sim.add_variable_property({"all", Property::young, Variable::time,
+                                                  Table({{0.0, 1e7}, {1.0, 2e7}}), 0}),
+                       doctest::Contains("every = 0"), InputError);
+  CHECK_THROWS_WITH_AS(sim.add_variable_property({"nowhere", Property::young, Variable::time,
+                                                  Table({{0.0, 1e7}, {1.0, 2e7}})}),
+                       doctest::Contains("group = 'nowhere'"), InputError);
+  HertzSim mech;
+  mech.add_material(glass());
+  CHECK_THROWS_WITH_AS(mech.add_variable_property({"all", Property::young, Variable::temperature,
+                                                   Table({{0.0, 1e7}, {1.0, 2e7}})}),
+                       doctest::Contains("variable = temperature is invalid"), InputError);
+}
+
+TEST_CASE("variable property: the time step is checked against the stiffest table value") {
+  HertzSim::Params prm;
+  HertzSim probe;
+  const auto pm = probe.add_material(glass());
+  (void)pm;
+  probe.add_particle({.position = {0, 0, 0}, .radius = 0.01});
+  probe.initialize();
+  const double critical_soft = probe.critical_time_step();
+  prm.time_step = 0.9 * critical_soft; // stable for the material's modulus
+  HertzSim sim(prm);
+  sim.add_material(glass());
+  sim.add_particle({.position = {0, 0, 0}, .radius = 0.01});
+  sim.add_variable_property({"all", Property::young, Variable::time,
+                             Table({{0.0, 7e10}, {1.0, 7e12}})});
+  CHECK_THROWS_WITH_AS(sim.initialize(), doctest::Contains("above the stable limit"), InputError);
+}
+
+TEST_CASE("statistics: counts, totals, means and extremes of known velocities") {
+  HertzSim::Params prm;
+  prm.time_step = 1e-6;
+  HertzSim sim(prm);
+  const auto m = sim.add_material(glass());
+  const std::vector<double> vx = {0.1, -0.4, 0.25, 0.05};
+  std::vector<std::int64_t> ids;
+  for (std::size_t k = 0; k < vx.size(); ++k)
+    ids.push_back(sim.add_particle({.position = {0.1 * double(k), 0, 0}, .radius = 0.01,
+                                    .material = m, .velocity = {vx[k], 0, 0}}));
+  sim.add_particle({.position = {1, 0, 0}, .radius = 0.01, .material = m,
+                    .creation_time = 1.0}); // inactive
+  sim.add_group("pushed", {ids[1], ids[2]});
+  sim.fix_velocity("pushed", Vec3(0.3, 0, 0));
+  sim.initialize();
+  auto s = io::statistics(sim);
+  CHECK(s.particles == 4);
+  CHECK(s.free_particles == 2);
+  CHECK(s.inactive == 1);
+  CHECK(s.removed == 0);
+  CHECK(s.speed.count == 4);
+  CHECK(s.speed.total == approx(0.1 + 0.4 + 0.25 + 0.05).epsilon(1e-15));
+  CHECK(s.speed.mean == approx(0.8 / 4).epsilon(1e-15));
+  CHECK(s.velocity[0].min == -0.4);
+  CHECK(s.velocity[0].max == 0.25);
+  CHECK(s.mass.total == approx(4 * glass().density * 4.0 / 3.0 * pi * 1e-6).epsilon(1e-14));
+  const auto f = io::statistics(sim, "all", true); // the two unprescribed ones
+  CHECK(f.particles == 2);
+  CHECK(f.velocity[0].total == approx(0.1 + 0.05).epsilon(1e-15));
+  const auto g = io::statistics(sim, "pushed");
+  CHECK(g.particles == 2);
+  CHECK(g.free_particles == 0);
+  // after a step the pushed ones move at the fixed velocity
+  sim.step();
+  s = io::statistics(sim, "pushed");
+  CHECK(s.velocity[0].min == approx(0.3).epsilon(1e-15));
+  CHECK(s.velocity[0].max == approx(0.3).epsilon(1e-15));
+  CHECK(std::isnan(io::statistics(sim).temperature.mean)); // a mechanical simulation
+}
