@@ -58,30 +58,19 @@ namespace {
 /// Graphs of the history and a picture of the last frame, drawn by scripts/grain_plot.py (its
 /// location is known at build time). Returns false if Python with matplotlib is missing.
 bool draw_pictures(const std::filesystem::path& dir) {
-#ifdef GRAIN_PLOT_SCRIPT
-  const std::string python =
-      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  auto run = [&](const std::string& args) {
-    const std::string cmd =
-        python + " '" + std::string(GRAIN_PLOT_SCRIPT) + "' " + args + " > /dev/null 2>&1";
-    return std::system(cmd.c_str()) == 0;
-  };
   const std::string d = dir.string();
-  std::string last;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    if (name.rfind("drum2d_particles_", 0) == 0 && name > last) last = name;
-  }
+  const std::string last = example::last_file(dir, "drum2d_particles_");
   return !last.empty() &&
-         run("history '" + d + "/drum2d_history.csv' -y mean_temperature -y min_temperature "
-             "-y max_temperature -y heat_inflow -o '" + d + "/drum2d_temperatures.png'") &&
-         run("history '" + d + "/drum2d_history.csv' -y kinetic_energy -y contacts_pp "
-             "-y contacts_pw -o '" + d + "/drum2d_mechanics.png'") &&
-         run("disks '" + d + "/" + last + "' -f temperature -o '" + d + "/drum2d_final.png'");
-#else
-  (void)dir;
-  return false;
-#endif
+         example::plot("history '" + d +
+                       "/drum2d_history.csv' -y mean_temperature -y min_temperature "
+                       "-y max_temperature -y heat_inflow -o '" +
+                       d + "/drum2d_temperatures.png'") &&
+         example::plot("history '" + d +
+                       "/drum2d_history.csv' -y kinetic_energy -y contacts_pp "
+                       "-y contacts_pw -o '" +
+                       d + "/drum2d_mechanics.png'") &&
+         example::plot("disks '" + d + "/" + last + "' -f temperature -o '" + d +
+                       "/drum2d_final.png'");
 }
 
 } // namespace
@@ -93,25 +82,25 @@ int main(int argc, char** argv) {
   if (!example::parse_arguments(argc, argv, "drum2d", end_time, out_dir)) return 2;
 
   // ------------------------------------------------------------------ set-up
-  constexpr double drum_radius = 0.04;   // [m]
-  constexpr double drum_speed = 3.0;     // angular velocity [rad/s] (about 29 rpm)
+  constexpr double drum_radius = 0.04; // [m]
+  constexpr double drum_speed = 3.0;   // angular velocity [rad/s] (about 29 rpm)
   constexpr double wall_temperature = 400.0, bed_temperature = 300.0; // [K]
-  constexpr double r_min = 1.0e-3, r_max = 1.5e-3; // disk radii [m]
-  constexpr double spacing = 3.2e-3;               // starting lattice spacing [m]
+  constexpr double r_min = 1.0e-3, r_max = 1.5e-3;                    // disk radii [m]
+  constexpr double spacing = 3.2e-3; // starting lattice spacing [m]
 
   Sim::Params params;
   params.gravity = Vec2(0.0, -9.81); // [m/s^2]
   Sim sim(params, Disk{.sphere_mass = true});
 
   const auto copper = sim.add_material({.name = "copper (softened)",
-                                        .density = 8900.0,      // [kg/m^3]
-                                        .young = 1e7,           // simulated [Pa]
+                                        .density = 8900.0, // [kg/m^3]
+                                        .young = 1e7,      // simulated [Pa]
                                         .poisson = 0.34,
-                                        .young_real = 1.2e11,   // real [Pa]
+                                        .young_real = 1.2e11, // real [Pa]
                                         .restitution = 0.6,
                                         .friction = 0.4,
                                         .rolling_friction = 0.02,
-                                        .conductivity = 400.0,  // [W/(m K)]
+                                        .conductivity = 400.0,    // [W/(m K)]
                                         .heat_capacity = 385.0}); // [J/(kg K)]
   sim.add_wall(walls::Circle{Vec2(0.0, 0.0), drum_radius},
                {.name = "drum",
@@ -150,8 +139,8 @@ int main(int argc, char** argv) {
     }
     mean /= static_cast<double>(p.size());
     const auto [pp, pw] = s.contact_counts();
-    std::printf("  %10.3f   %10.3f   %10.3f   %10.3f   %18.4f   %4zu + %3zu\n", s.time(), mean,
-                lo, hi, q, pp, pw);
+    std::printf("  %10.3f   %10.3f   %10.3f   %10.3f   %18.4f   %4zu + %3zu\n", s.time(), mean, lo,
+                hi, q, pp, pw);
   };
   auto lowest = [](const Sim& s) {
     return *std::min_element(s.particles().temperature.begin(), s.particles().temperature.end());
@@ -161,9 +150,9 @@ int main(int argc, char** argv) {
   };
   sim.run(end_time, io::summary(), io::every(0.1, log),
           io::every(0.05, io::vtk(prefix, 1.0, /*contacts=*/true)),
-          io::every(0.01, io::history(prefix + "_history.csv",
-                                      io::column("min_temperature [K]", lowest),
-                                      io::column("max_temperature [K]", highest))),
+          io::every(0.01,
+                    io::history(prefix + "_history.csv", io::column("min_temperature [K]", lowest),
+                                io::column("max_temperature [K]", highest))),
           io::progress());
 
   // ------------------------------------------------------------------ results
@@ -176,12 +165,15 @@ int main(int argc, char** argv) {
   }
   std::printf("\ndrum2d: after %.3f s the mean disk temperature is %.3f K (from %.0f K)\n",
               sim.time(), sim.mean_temperature(), bed_temperature);
-  std::printf("  disks outside the drum: %zu, temperatures outside [%.0f, %.0f] K: %zu\n",
-              outside, bed_temperature, wall_temperature, out_of_range);
+  std::printf("  disks outside the drum: %zu, temperatures outside [%.0f, %.0f] K: %zu\n", outside,
+              bed_temperature, wall_temperature, out_of_range);
   const bool pictures = draw_pictures(out_dir);
-  std::printf("  output in %s: VTK series drum2d_{particles,walls,contacts}.vtk.series; time history "
-              "drum2d_history.csv%s\n",
-              std::filesystem::absolute(out_dir).lexically_normal().string().c_str(), pictures ? "; graphs drum2d_temperatures.png, drum2d_mechanics.png; picture "
-              "drum2d_final.png" : " (no graphs: scripts/grain_plot.py needs python3-matplotlib)");
+  std::printf(
+      "  output in %s: VTK series drum2d_{particles,walls,contacts}.vtk.series; time history "
+      "drum2d_history.csv%s\n",
+      std::filesystem::absolute(out_dir).lexically_normal().string().c_str(),
+      pictures ? "; graphs drum2d_temperatures.png, drum2d_mechanics.png; picture "
+                 "drum2d_final.png"
+               : " (no graphs: scripts/grain_plot.py needs python3-matplotlib)");
   return outside == 0 && out_of_range == 0 ? 0 : 1;
 }

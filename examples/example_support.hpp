@@ -1,13 +1,14 @@
 #pragma once
 /// \file example_support.hpp
-/// What the example programs share: a portable random-number sequence and the command line
-/// "[end_time_s] [output_dir]".
+/// What the example programs share: a portable random-number sequence, the command line
+/// "[end_time_s] [output_dir]" and calls of the plotting script.
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 
 namespace example {
 
@@ -38,6 +39,31 @@ inline bool parse_arguments(int argc, char** argv, const char* name, double& end
   if (ok && argc > 2) out_dir = argv[2];
   if (!ok) std::fprintf(stderr, "usage: %s [end_time_s > 0] [output_dir]\n", name);
   return ok;
+}
+
+/// Runs scripts/grain_plot.py (its location is known at build time) with these arguments,
+/// quietly; false if it fails or if Python with matplotlib is missing.
+inline bool plot(const std::string& args) {
+#ifdef GRAIN_PLOT_SCRIPT
+  const std::string python =
+      std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const std::string cmd =
+      python + " '" + std::string(GRAIN_PLOT_SCRIPT) + "' " + args + " > /dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0;
+#else
+  (void)args;
+  return false;
+#endif
+}
+
+/// The last (in name order) file of `dir` whose name starts with `prefix`; empty if none.
+inline std::string last_file(const std::filesystem::path& dir, const std::string& prefix) {
+  std::string last;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) == 0 && name > last) last = name;
+  }
+  return last;
 }
 
 } // namespace example

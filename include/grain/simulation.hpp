@@ -52,6 +52,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <numeric>
 #include <limits>
 #include <optional>
 #include <string>
@@ -281,6 +282,10 @@ public:
     s.id = s.id >= 0 ? s.id : next_id_;
     const std::int64_t id = s.id;
     const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
+    // ids below next_id_ may be taken (an id at or above it is new)
+    if (id < next_id_ && has_particle(id))
+      throw InputError(obj + ": id = " + std::to_string(id) +
+                       " is invalid; valid: an id no other particle has (or -1 = next free id)");
     detail::require(all_finite(s.position), obj, "position", to_text(s.position), "finite coordinates");
     detail::require_positive(obj, "radius", s.radius);
     detail::require(all_finite(s.velocity), obj, "velocity", to_text(s.velocity), "finite components");
@@ -737,6 +742,12 @@ public:
     }
     if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
     origin_.clear();
+    // particles added since the last build were appended: the old rows keep their indices, so
+    // the contact histories of the old pairs carry over
+    if (list_.rows() > 0 && list_.rows() < particles_.size()) {
+      origin_.assign(particles_.size(), none);
+      std::iota(origin_.begin(), origin_.begin() + static_cast<std::ptrdiff_t>(list_.rows()), 0u);
+    }
     rebuild();
     ensure_groups();
     cond_.restrain_velocities(particles_);
@@ -843,6 +854,35 @@ public:
     steps(n, std::forward<Observers>(obs)...);
   }
 
+  // ---------------------------------------------------------------- checkpoint
+  /// Visits the whole run state (not the set-up: materials, walls' options, groups, conditions
+  /// and variable properties are made again by the program) with an archive `ar` that reads or
+  /// writes each item; used by io::save_checkpoint / io::load_checkpoint. After reading, the
+  /// simulation continues exactly as the one that wrote it.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    auto& p = particles_;
+    ar(p.id, p.position, p.velocity, p.omega, p.orientation, p.force, p.torque, p.radius, p.mass,
+       p.inv_mass, p.inertia, p.inv_inertia, p.material);
+    if constexpr (thermal) ar(p.temperature, p.heat_rate, p.heat_capacity, p.inv_heat_capacity);
+    for (auto& w : walls_)
+      ar(w.geometry, w.snapshot, w.pivot, w.options.velocity, w.options.omega, w.temperature);
+    ar(list_.offsets, list_.partners, list_.wall_offsets, list_.walls, list_.max_span);
+    ar(history_, wall_history_, snapshot_);
+    ar(dt_, time_, time_offset_, end_time_, r_max_, skin_, reach_, cutoff_, heat_on_);
+    ar(static_pairs_, static_walls_, cell_pair_, cell_wall_, steps_since_cells_);
+    ar(step_, steps_since_rebuild_, step0_, next_id_, gravity_now_);
+    ar(over_[0], over_[1], over_[2], over_[3], over_[4], over_[5]);
+    ar(pending_, doomed_, removed_ids_);
+    ar(counters_.steps, counters_.rebuilds, counters_.particle_steps);
+    if constexpr (Archive::reading) {
+      origin_.clear();
+      groups_dirty_ = true;
+      if (var_pairs_) refresh_pair_cache();
+      initialized_ = true;
+    }
+  }
+
   // ---------------------------------------------------------------- read access
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }
@@ -855,6 +895,8 @@ public:
   const std::vector<History>& histories() const { return history_; }
   double time() const { return time_; }
   long step_count() const { return step_; }
+  /// True once initialize() has run for the current set-up.
+  bool initialized() const { return initialized_; }
   /// End time of the current run() (for progress reports), or the current time.
   double end_time() const { return std::max(end_time_, time_); }
   double skin() const { return skin_; }

@@ -14,8 +14,8 @@
 // - friction mu(t) of a block sliding on a plane (rotation restrained): dv/dt = -mu(t) g.
 // - statistics of known velocities: counts, totals, means, extremes; free particles only.
 
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
 #include <cmath>
@@ -27,8 +27,8 @@ using grain::test::approx;
 
 namespace {
 
-using Thermal = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                            conduction::BatchelorOBrien>;
+using Thermal =
+    Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
 using ThermalSim = Simulation<Sphere, search::CellList, Thermal>;
 using HertzSim = Simulation<Sphere, search::CellList, Interaction<normal::Hertz<>, tangent::None>>;
 using FrictionSim = Simulation<Sphere, search::CellList, presets::LinearCoulomb>;
@@ -36,8 +36,14 @@ using FrictionSim = Simulation<Sphere, search::CellList, presets::LinearCoulomb>
 constexpr double pi = std::numbers::pi;
 
 Material glass() {
-  return {.name = "glass", .density = 2500, .young = 7e10, .poisson = 0.25, .restitution = 1.0,
-          .friction = 0.0, .conductivity = 1.0, .heat_capacity = 800};
+  return {.name = "glass",
+          .density = 2500,
+          .young = 7e10,
+          .poisson = 0.25,
+          .restitution = 1.0,
+          .friction = 0.0,
+          .conductivity = 1.0,
+          .heat_capacity = 800};
 }
 
 } // namespace
@@ -63,15 +69,18 @@ TEST_CASE("variable property: a temperature-dependent conductivity sets the stea
   ThermalSim sim(prm);
   const auto m = sim.add_material(glass());
   const double R = 0.01, pitch = 2 * R - 1e-4; // equal overlaps: equal contact radii
-  const auto a = sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = m, .temperature = T1});
-  const auto b = sim.add_particle({.position = {pitch, 0, 0}, .radius = R, .material = m, .temperature = 320});
-  const auto c = sim.add_particle({.position = {2 * pitch, 0, 0}, .radius = R, .material = m, .temperature = T3});
+  const auto a =
+      sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = m, .temperature = T1});
+  const auto b =
+      sim.add_particle({.position = {pitch, 0, 0}, .radius = R, .material = m, .temperature = 320});
+  const auto c = sim.add_particle(
+      {.position = {2 * pitch, 0, 0}, .radius = R, .material = m, .temperature = T3});
   sim.add_group("hot", {a});
   sim.add_group("cold", {c});
   sim.fix_temperature("hot", T1);
   sim.fix_temperature("cold", T3);
-  sim.add_variable_property({"all", Property::conductivity, Variable::temperature,
-                             Table({{300.0, 1.0}, {400.0, 3.0}})});
+  sim.add_variable_property(
+      {"all", Property::conductivity, Variable::temperature, Table({{300.0, 1.0}, {400.0, 3.0}})});
   sim.initialize();
   // the slowest time constant C / (2 H) is some 1e3 dt: run 40 of them
   const double H = 4.0 * keff(1.0, 1.0) * std::sqrt(0.5 * R * 1e-4);
@@ -121,10 +130,11 @@ TEST_CASE("variable property: Young's modulus switched in time gives the new Her
     mw.young = 1e6 * E1;
     const auto w = sim.add_material(mw);
     sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = w});
-    sim.add_particle({.position = {0, 0, R + gap}, .radius = R, .material = m, .velocity = {0, 0, -v}});
+    sim.add_particle(
+        {.position = {0, 0, R + gap}, .radius = R, .material = m, .velocity = {0, 0, -v}});
     if (variable) // E0 until t = 1 ms, then E1 (impact at gap / v = 4 ms)
-      sim.add_variable_property({"all", Property::young, Variable::time,
-                                 Table({{0.0, E0}, {1e-3, E0}, {1.001e-3, E1}})});
+      sim.add_variable_property(
+          {"all", Property::young, Variable::time, Table({{0.0, E0}, {1e-3, E0}, {1.001e-3, E1}})});
     dmax = 0.0;
     for (int k = 0; k < 8000; ++k) {
       sim.step();
@@ -160,8 +170,8 @@ TEST_CASE("variable property: a growing particle on a plane takes the new mass a
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = w});
   const double R0 = 0.004, R1 = 0.005;
   sim.add_particle({.position = {0, 0, R0}, .radius = R0, .material = m});
-  sim.add_variable_property({"all", Property::radius, Variable::time,
-                             Table({{0.0, R0}, {0.05, R1}}), 10});
+  sim.add_variable_property(
+      {"all", Property::radius, Variable::time, Table({{0.0, R0}, {0.05, R1}}), 10});
   sim.run(0.3);
   const auto& p = sim.particles();
   const double mass = mp.density * 4.0 / 3.0 * pi * R1 * R1 * R1;
@@ -186,15 +196,16 @@ TEST_CASE("variable property: friction changing in time decelerates a sliding bl
   const auto m = sim.add_material(mp);
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m});
   const double R = 0.005, g = 9.81;
-  const double delta = std::pow(3.0 * mp.density * 4.0 / 3.0 * pi * R * R * R * g /
-                                    (4.0 * mp.young / (2.0 * (1 - mp.poisson * mp.poisson)) *
-                                     std::sqrt(R)),
-                                2.0 / 3.0);
-  sim.add_particle({.position = {0, 0, R - delta}, .radius = R, .material = m, .velocity = {1.0, 0, 0}});
+  const double delta =
+      std::pow(3.0 * mp.density * 4.0 / 3.0 * pi * R * R * R * g /
+                   (4.0 * mp.young / (2.0 * (1 - mp.poisson * mp.poisson)) * std::sqrt(R)),
+               2.0 / 3.0);
+  sim.add_particle(
+      {.position = {0, 0, R - delta}, .radius = R, .material = m, .velocity = {1.0, 0, 0}});
   sim.restrain("all", {}, {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}); // a block: no rolling
   // mu = 0.2 until 0.1 s, then 0.4 (both the particle's and the wall's: the pair mean)
-  sim.add_variable_property({"all", Property::friction, Variable::time,
-                             Table({{0.0, 0.2}, {0.1, 0.2}, {0.1001, 0.4}})});
+  sim.add_variable_property(
+      {"all", Property::friction, Variable::time, Table({{0.0, 0.2}, {0.1, 0.2}, {0.1001, 0.4}})});
   sim.run(0.1);
   const double v1 = sim.particles().velocity[0].x();
   sim.run(0.1);
@@ -237,8 +248,8 @@ TEST_CASE("variable property: the time step is checked against the stiffest tabl
   HertzSim sim(prm);
   sim.add_material(glass());
   sim.add_particle({.position = {0, 0, 0}, .radius = 0.01});
-  sim.add_variable_property({"all", Property::young, Variable::time,
-                             Table({{0.0, 7e10}, {1.0, 7e12}})});
+  sim.add_variable_property(
+      {"all", Property::young, Variable::time, Table({{0.0, 7e10}, {1.0, 7e12}})});
   CHECK_THROWS_WITH_AS(sim.initialize(), doctest::Contains("above the stable limit"), InputError);
 }
 
@@ -250,10 +261,12 @@ TEST_CASE("statistics: counts, totals, means and extremes of known velocities") 
   const std::vector<double> vx = {0.1, -0.4, 0.25, 0.05};
   std::vector<std::int64_t> ids;
   for (std::size_t k = 0; k < vx.size(); ++k)
-    ids.push_back(sim.add_particle({.position = {0.1 * double(k), 0, 0}, .radius = 0.01,
-                                    .material = m, .velocity = {vx[k], 0, 0}}));
-  sim.add_particle({.position = {1, 0, 0}, .radius = 0.01, .material = m,
-                    .creation_time = 1.0}); // inactive
+    ids.push_back(sim.add_particle({.position = {0.1 * double(k), 0, 0},
+                                    .radius = 0.01,
+                                    .material = m,
+                                    .velocity = {vx[k], 0, 0}}));
+  sim.add_particle(
+      {.position = {1, 0, 0}, .radius = 0.01, .material = m, .creation_time = 1.0}); // inactive
   sim.add_group("pushed", {ids[1], ids[2]});
   sim.fix_velocity("pushed", Vec3(0.3, 0, 0));
   sim.initialize();

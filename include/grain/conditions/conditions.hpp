@@ -59,11 +59,9 @@ enum class MotionKind : std::uint8_t { velocity, acceleration };
 /// The third seed's kind strings: "vv", "va", "av", "aa" = (linear, angular) each a velocity (v)
 /// or an acceleration (a).
 inline std::pair<MotionKind, MotionKind> motion_kinds(std::string_view kind) {
-  auto one = [&](char c) {
-    return c == 'v' ? MotionKind::velocity : MotionKind::acceleration;
-  };
-  const bool ok = kind.size() == 2 && (kind[0] == 'v' || kind[0] == 'a') &&
-                  (kind[1] == 'v' || kind[1] == 'a');
+  auto one = [&](char c) { return c == 'v' ? MotionKind::velocity : MotionKind::acceleration; };
+  const bool ok =
+      kind.size() == 2 && (kind[0] == 'v' || kind[0] == 'a') && (kind[1] == 'v' || kind[1] == 'a');
   if (!ok)
     throw InputError("prescribed motion: kind = '" + std::string(kind) +
                      "' is invalid; valid values: 'vv', 'va', 'av', 'aa' (linear, angular: "
@@ -88,7 +86,8 @@ inline std::vector<Vec<N>> orthonormal(const std::vector<Vec<N>>& dirs, const st
       throw InputError(obj + ": " + what + " direction |d| = " + to_text(n) +
                        " is invalid; valid range: (0, inf), finite components");
     Vec<N> u = d / n;
-    for (const auto& b : out) u -= u.dot(b) * b;
+    for (const auto& b : out)
+      u -= u.dot(b) * b;
     const double m = u.norm();
     if (!(m > 1e-9))
       throw InputError(obj + ": " + what +
@@ -100,7 +99,8 @@ inline std::vector<Vec<N>> orthonormal(const std::vector<Vec<N>>& dirs, const st
 
 template <class T>
 inline T project_out(T v, const std::vector<T>& basis) {
-  for (const auto& b : basis) v -= v.dot(b) * b;
+  for (const auto& b : basis)
+    v -= v.dot(b) * b;
   return v;
 }
 
@@ -131,9 +131,9 @@ public:
   };
   struct RestraintOn {
     std::size_t group;
-    std::vector<V> linear;        // orthonormal
-    std::vector<Vec3> angular;    // orthonormal (3D)
-    bool rotation = false;        // 2D: rotation restrained
+    std::vector<V> linear;     // orthonormal
+    std::vector<Vec3> angular; // orthonormal (3D)
+    bool rotation = false;     // 2D: rotation restrained
   };
   /// A particle under motion control or restraint (refreshed with the indices).
   struct Control {
@@ -168,15 +168,15 @@ public:
     for (std::size_t g = 0; g < groups.size(); ++g)
       if (groups[g].name == name) return g;
     std::string known;
-    for (const auto& g : groups) known += (known.empty() ? "'" : ", '") + g.name + "'";
+    for (const auto& g : groups)
+      known += (known.empty() ? "'" : ", '") + g.name + "'";
     throw InputError("group = '" + name + "' is invalid; valid values: " + known +
                      " (groups made by add_group)");
   }
 
   std::size_t add(Group g) {
     const std::string obj = "Simulation::add_group '" + g.name + "'";
-    if (g.name.empty())
-      throw InputError(obj + ": name = '' is invalid; valid: a non-empty name");
+    if (g.name.empty()) throw InputError(obj + ": name = '' is invalid; valid: a non-empty name");
     for (const auto& h : groups)
       if (h.name == g.name)
         throw InputError(obj + ": name = '" + g.name +
@@ -194,20 +194,23 @@ public:
   void refresh(const std::vector<std::int64_t>& id) {
     const std::size_t n = id.size();
     std::vector<std::pair<std::int64_t, std::uint32_t>> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = {id[i], static_cast<std::uint32_t>(i)};
+    for (std::size_t i = 0; i < n; ++i)
+      order[i] = {id[i], static_cast<std::uint32_t>(i)};
     std::sort(order.begin(), order.end());
     for (std::size_t g = 0; g < groups.size(); ++g) {
       auto& m = members[g];
       m.clear();
       if (groups[g].everything) {
         m.resize(n);
-        for (std::size_t i = 0; i < n; ++i) m[i] = static_cast<std::uint32_t>(i);
+        for (std::size_t i = 0; i < n; ++i)
+          m[i] = static_cast<std::uint32_t>(i);
         continue;
       }
       // merge the sorted ids with the sorted (id, index) pairs
       std::size_t k = 0;
       for (const auto x : groups[g].ids) {
-        while (k < n && order[k].first < x) ++k;
+        while (k < n && order[k].first < x)
+          ++k;
         if (k < n && order[k].first == x) m.push_back(order[k].second);
       }
       std::sort(m.begin(), m.end());
@@ -221,12 +224,14 @@ public:
     for (const auto& c : forces) {
       if (!c.f.active(t)) continue;
       const V f = c.f(t);
-      for (const auto i : members[c.group]) p.force[i] += f;
+      for (const auto i : members[c.group])
+        p.force[i] += f;
     }
     for (const auto& c : torques) {
       if (!c.f.active(t)) continue;
       const A f = c.f(t);
-      for (const auto i : members[c.group]) p.torque[i] += f;
+      for (const auto i : members[c.group])
+        p.torque[i] += f;
     }
   }
 
@@ -236,12 +241,14 @@ public:
     for (const auto& c : heat_fluxes) {
       if (!c.f.active(t)) continue;
       const double q = c.f(t);
-      for (const auto i : members[c.group]) p.heat_rate[i] += q * surface(p.radius[i]);
+      for (const auto i : members[c.group])
+        p.heat_rate[i] += q * surface(p.radius[i]);
     }
     for (const auto& c : heat_rates) {
       if (!c.f.active(t)) continue;
       const double q = c.f(t);
-      for (const auto i : members[c.group]) p.heat_rate[i] += q;
+      for (const auto i : members[c.group])
+        p.heat_rate[i] += q;
     }
   }
 
@@ -251,7 +258,8 @@ public:
     for (const auto& c : temperatures) {
       if (!c.f.active(t)) continue;
       const double v = c.f.value(t);
-      for (const auto i : members[c.group]) p.temperature[i] = v;
+      for (const auto i : members[c.group])
+        p.temperature[i] = v;
     }
   }
 
@@ -270,7 +278,8 @@ public:
   /// Removes the restrained components of the velocities.
   template <class P>
   void restrain_velocities(P& p) const {
-    for (const auto& c : controls) restrain_velocity(p, c);
+    for (const auto& c : controls)
+      restrain_velocity(p, c);
   }
 
   /// Saves the state of the controlled particles before the integrator moves them, and decides
@@ -367,8 +376,8 @@ public:
       if (wf) {
         if (c.ang_on) {
           const auto& m = angular_motion[static_cast<std::size_t>(c.angular)];
-          (*wf)[c.i] = m.kind == MotionKind::velocity ? A(value_of(m.f, t + dt))
-                                                      : A(c.w0 + dt * c.alpha);
+          (*wf)[c.i] =
+              m.kind == MotionKind::velocity ? A(value_of(m.f, t + dt)) : A(c.w0 + dt * c.alpha);
         } else {
           restrain_angular((*wf)[c.i], c);
         }
@@ -406,7 +415,8 @@ private:
       return controls[static_cast<std::size_t>(slot[i])];
     };
     for (std::size_t k = 0; k < linear_motion.size(); ++k)
-      for (const auto i : members[linear_motion[k].group]) control_of(i).linear = static_cast<int>(k);
+      for (const auto i : members[linear_motion[k].group])
+        control_of(i).linear = static_cast<int>(k);
     for (std::size_t k = 0; k < angular_motion.size(); ++k)
       for (const auto i : members[angular_motion[k].group])
         control_of(i).angular = static_cast<int>(k);

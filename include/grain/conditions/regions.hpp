@@ -6,7 +6,8 @@
 /// |---|---|---|---|
 /// | `regions::Box<D>{lo, hi}` | rectangle | box | lo <= x <= hi componentwise |
 /// | `regions::Ball<D>{centre, radius}` | circle | sphere | |x - centre| <= radius |
-/// | `regions::Polygon{vertices}` | polygon | - | x inside the simple polygon (even-odd rule) or on its edge |
+/// | `regions::Polygon{vertices}` | polygon | - | x inside the simple polygon (even-odd rule) or on
+/// its edge |
 ///
 /// A particle leaves the bounding box when its centre is no longer contained; it enters a sink
 /// when its centre is contained.
@@ -50,7 +51,8 @@ struct Ball {
 
   bool contains(const Vec<D>& x) const { return (x - center).squaredNorm() <= radius * radius; }
   void validate(const std::string& obj) const {
-    for (int d = 0; d < D; ++d) detail::require_finite(obj + " (Ball)", "center component", center[d]);
+    for (int d = 0; d < D; ++d)
+      detail::require_finite(obj + " (Ball)", "center component", center[d]);
     detail::require_positive(obj + " (Ball)", "radius", radius);
   }
 };
@@ -83,11 +85,24 @@ struct Polygon {
     for (const auto& v : vertices)
       detail::require(all_finite(v), obj + " (Polygon)", "vertex", "(non-finite)",
                       "finite coordinates");
-    double area = 0.0;
-    for (std::size_t k = 0, l = vertices.size() - 1; k < vertices.size(); l = k++)
-      area += vertices[l].x() * vertices[k].y() - vertices[k].x() * vertices[l].y();
-    detail::require(std::abs(area) > 0.0, obj + " (Polygon)", "area", 0.5 * std::abs(area),
-                    "(0, inf) m^2 (vertices not all on one line)");
+    // twice the signed area (shoelace formula), taken about the first vertex so that its
+    // round-off is ~eps times the squared extent, not times the squared distance to the origin;
+    // collinear vertices give a round-off residue, not an exact zero, hence the relative bound
+    const Vec2 o = vertices.front();
+    Vec2 lo = o, hi = o;
+    double area2 = 0.0;
+    for (std::size_t k = 0, l = vertices.size() - 1; k < vertices.size(); l = k++) {
+      const Vec2 a = vertices[l] - o, b = vertices[k] - o;
+      area2 += a.x() * b.y() - b.x() * a.y();
+      lo = lo.cwiseMin(vertices[k]);
+      hi = hi.cwiseMax(vertices[k]);
+    }
+    const double min_area = 0.5e-10 * (hi - lo).squaredNorm();
+    std::string range = "(";
+    range += detail::to_text(min_area);
+    range += ", inf) m^2 = (1e-10 x squared extent / 2, inf) (vertices not all on one line)";
+    detail::require(0.5 * std::abs(area2) > min_area, obj + " (Polygon)", "area",
+                    0.5 * std::abs(area2), range);
   }
 };
 
@@ -97,9 +112,9 @@ namespace grain {
 
 /// A region of a D-dimensional simulation.
 template <int D>
-using Region = std::conditional_t<D == 2,
-                                  std::variant<regions::Box<2>, regions::Ball<2>, regions::Polygon>,
-                                  std::variant<regions::Box<3>, regions::Ball<3>>>;
+using Region =
+    std::conditional_t<D == 2, std::variant<regions::Box<2>, regions::Ball<2>, regions::Polygon>,
+                       std::variant<regions::Box<3>, regions::Ball<3>>>;
 
 /// A region with an activity interval [t_begin, t_end] [s].
 template <int D>

@@ -5,15 +5,14 @@
 ///
 /// | property | unit | valid values | recomputed with it |
 /// |---|---|---|---|
-/// | `radius` | m | > 0 | mass (density kept), inertia, volume, weight, thermal inertia m c, neighbour list, contact constants |
-/// | `density` | kg/m^3 | > 0 | mass, inertia, weight, thermal inertia m c |
-/// | `heat_capacity` | J/(kg K) | > 0 | thermal inertia m c |
-/// | `young` | Pa | > 0 | contact constants (E*, G* with the shear modulus derived from E and nu) |
-/// | `poisson` | - | (-1, 0.5) | contact constants |
-/// | `restitution` | - | (0, 1] | contact constants (damping) |
-/// | `friction` | - | >= 0 | contact constants (sliding and static friction) |
-/// | `rolling_friction` | - | >= 0 | contact constants |
-/// | `conductivity` | W/(m K) | >= 0 | contact constants (conductance) |
+/// | `radius` | m | > 0 | mass (density kept), inertia, volume, weight, thermal inertia m c,
+/// neighbour list, contact constants | | `density` | kg/m^3 | > 0 | mass, inertia, weight, thermal
+/// inertia m c | | `heat_capacity` | J/(kg K) | > 0 | thermal inertia m c | | `young` | Pa | > 0 |
+/// contact constants (E*, G* with the shear modulus derived from E and nu) | | `poisson` | - | (-1,
+/// 0.5) | contact constants | | `restitution` | - | (0, 1] | contact constants (damping) | |
+/// `friction` | - | >= 0 | contact constants (sliding and static friction) | | `rolling_friction` |
+/// - | >= 0 | contact constants | | `conductivity` | W/(m K) | >= 0 | contact constants
+/// (conductance) |
 ///
 /// | variable | unit |
 /// |---|---|
@@ -59,24 +58,36 @@ enum class Variable : std::uint8_t { temperature, time, speed };
 
 inline const char* property_name(Property p) {
   switch (p) {
-  case Property::radius: return "radius";
-  case Property::density: return "density";
-  case Property::heat_capacity: return "heat_capacity";
-  case Property::young: return "young";
-  case Property::poisson: return "poisson";
-  case Property::restitution: return "restitution";
-  case Property::friction: return "friction";
-  case Property::rolling_friction: return "rolling_friction";
-  case Property::conductivity: return "conductivity";
+  case Property::radius:
+    return "radius";
+  case Property::density:
+    return "density";
+  case Property::heat_capacity:
+    return "heat_capacity";
+  case Property::young:
+    return "young";
+  case Property::poisson:
+    return "poisson";
+  case Property::restitution:
+    return "restitution";
+  case Property::friction:
+    return "friction";
+  case Property::rolling_friction:
+    return "rolling_friction";
+  case Property::conductivity:
+    return "conductivity";
   }
   return "?";
 }
 
 inline const char* variable_name(Variable v) {
   switch (v) {
-  case Variable::temperature: return "temperature";
-  case Variable::time: return "time";
-  case Variable::speed: return "speed";
+  case Variable::temperature:
+    return "temperature";
+  case Variable::time:
+    return "time";
+  case Variable::speed:
+    return "speed";
   }
   return "?";
 }
@@ -142,9 +153,9 @@ struct VariableProperty {
         break;
       }
       if (!ok)
-        throw InputError(obj + ": " + table->label() + " y[" + std::to_string(k) + "] = " +
-                         detail::to_text(v) + " is invalid for " + property_name(property) +
-                         "; valid range: " + range);
+        throw InputError(obj + ": " + table->label() + " y[" + std::to_string(k) +
+                         "] = " + detail::to_text(v) + " is invalid for " +
+                         property_name(property) + "; valid range: " + range);
     }
   }
 };

@@ -5,3 +5,4 @@
 #include <grain/io/vtk.hpp>
 #include <grain/io/csv.hpp>
 #include <grain/io/statistics.hpp>
+#include <grain/io/checkpoint.hpp>

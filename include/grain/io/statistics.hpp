@@ -97,7 +97,8 @@ Statistics<Sim::dimension> statistics(const Sim& sim, const std::string& group =
     if (free) ++s.free_particles;
     const auto& v = p.velocity[i];
     s.speed.add(v.norm());
-    for (int d = 0; d < D; ++d) s.velocity[d].add(v[d]);
+    for (int d = 0; d < D; ++d)
+      s.velocity[d].add(v[d]);
     const double f = p.force[i].norm();
     s.force.add(f);
     s.acceleration.add(f * p.inv_mass[i]);
@@ -116,7 +117,8 @@ Statistics<Sim::dimension> statistics(const Sim& sim, const std::string& group =
   for (auto* f : {&s.speed, &s.acceleration, &s.force, &s.angular_speed, &s.torque,
                   &s.kinetic_energy, &s.radius, &s.mass, &s.height, &s.temperature, &s.heat_rate})
     f->finish();
-  for (auto& f : s.velocity) f.finish();
+  for (auto& f : s.velocity)
+    f.finish();
   return s;
 }
 

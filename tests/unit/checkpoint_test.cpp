@@ -1,0 +1,204 @@
+// Checkpoint and restart: a resumed run continues bit-identically to an uninterrupted one, and
+// files that do not fit the simulation are rejected with messages that say why.
+
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
+#include <grain/models/conduction/batchelor_obrien.hpp>
+
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace grain;
+
+namespace {
+
+using Contact =
+    Interaction<normal::Hertz<>, tangent::Mindlin, rolling::None, conduction::BatchelorOBrien>;
+using Sim = Simulation<Sphere, search::CellList, Contact>;
+using SimEuler = Simulation<Sphere, search::CellList, Contact, integrate::SymplecticEuler>;
+
+std::string temp_path(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "grain_checkpoint_test";
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+/// A thermo-mechanical pile with everything that carries state across steps: tangential
+/// (Mindlin) histories, a hot wall, a prescribed force and a fixed temperature on groups, a
+/// temperature-dependent conductivity (per-contact constants), a sink and a particle that is
+/// created late.
+template <class S>
+S make(double young = 1e7) {
+  typename S::Params prm;
+  prm.time_step = 2e-6;
+  prm.gravity = Vec3(0, 0, -9.81);
+  S sim(prm);
+  Material m;
+  m.density = 2500;
+  m.young = young;
+  m.friction = 0.4;
+  m.conductivity = 1;
+  m.heat_capacity = 800;
+  const auto k = sim.add_material(m);
+  sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = k, .temperature = 350.0});
+  std::vector<std::int64_t> first;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int l = 0; l < 3; ++l) {
+        const auto id =
+            sim.add_particle({.position = {0.021 * i + 0.002 * l, 0.021 * j, 0.011 + 0.021 * l},
+                              .radius = 0.01,
+                              .material = k,
+                              .velocity = {0.05 * j, -0.02 * i, 0},
+                              .temperature = 300.0 + 5 * l});
+        if (l == 2) first.push_back(id);
+      }
+  sim.add_particle({.position = {0.03, 0.03, 0.2},
+                    .radius = 0.008,
+                    .material = k,
+                    .temperature = 400.0,
+                    .creation_time = 0.03});
+  sim.add_group("top", first);
+  sim.prescribe_force("top",
+                      VectorTimeFunction<3>(TimeFunction::oscillatory(0, 1e-3, 0.01), 0.0, 0.0));
+  sim.add_group("held", {first.front()});
+  sim.fix_temperature("held", 380.0);
+  sim.add_variable_property(
+      {"all", Property::conductivity, Variable::temperature, Table({{300.0, 1.0}, {400.0, 2.0}})});
+  sim.add_sink(regions::Box<3>{{0.06, -1, -1}, {1, 1, 1}});
+  return sim;
+}
+
+template <class S>
+void require_identical(const S& a, const S& b) {
+  REQUIRE(a.size() == b.size());
+  REQUIRE(a.step_count() == b.step_count());
+  CHECK(a.time() == b.time());
+  CHECK(a.removed_ids() == b.removed_ids());
+  const auto& p = a.particles();
+  const auto& q = b.particles();
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    differ += p.id[i] != q.id[i] || p.position[i] != q.position[i] ||
+              p.velocity[i] != q.velocity[i] || p.omega[i] != q.omega[i] ||
+              p.force[i] != q.force[i] || p.temperature[i] != q.temperature[i] ||
+              !p.orientation[i].coeffs().isApprox(q.orientation[i].coeffs(), 0.0);
+  }
+  CHECK(differ == 0);
+}
+
+} // namespace
+
+TEST_CASE("checkpoint: a resumed run continues bit-identically") {
+  const std::string path = temp_path("pile.ckpt");
+  Sim whole = make<Sim>();
+  whole.run(0.05);
+  REQUIRE(whole.removed_ids().size() > 0); // the sink acted
+  REQUIRE(whole.inactive_count() == 0);    // the late particle came
+
+  Sim first = make<Sim>();
+  first.run(0.02); // before the late particle is created
+  io::save_checkpoint(first, path);
+  Sim resumed = make<Sim>();
+  io::load_checkpoint(resumed, path);
+  CHECK(resumed.inactive_count() == 1);
+  resumed.run(0.03);
+  require_identical(whole, resumed);
+
+  // the tangential histories were restored, not restarted: a run resumed without them differs
+  Sim fresh = make<Sim>();
+  fresh.run(0.02);
+  auto& fp = fresh.particles();
+  Sim restarted = make<Sim>();
+  for (std::size_t i = 0; i < restarted.size(); ++i) {
+    if (!fresh.is_active(restarted.particles().id[i])) continue; // the sink took it
+    const auto k = fresh.index_of(restarted.particles().id[i]);
+    restarted.particles().position[i] = fp.position[k];
+    restarted.particles().velocity[i] = fp.velocity[k];
+    restarted.particles().omega[i] = fp.omega[k];
+    restarted.particles().temperature[i] = fp.temperature[k];
+  }
+  restarted.run(0.03);
+  bool all_same = true;
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    all_same =
+        all_same && whole.particles().position[i] ==
+                        restarted.particles().position[restarted.index_of(whole.particles().id[i])];
+  CHECK_FALSE(all_same);
+}
+
+TEST_CASE("checkpoint: the periodic observer writes a file a run can resume from") {
+  const std::string path = temp_path("periodic.ckpt");
+  std::filesystem::remove(path);
+  Sim a = make<Sim>();
+  a.run(0.01, io::every(0.005, io::checkpoint(path)));
+  REQUIRE(std::filesystem::exists(path));
+  CHECK_FALSE(std::filesystem::exists(path + ".tmp"));
+  Sim b = make<Sim>();
+  io::load_checkpoint(b, path);
+  CHECK(b.time() == a.time());
+  a.run(0.005);
+  b.run(0.005);
+  require_identical(a, b);
+}
+
+TEST_CASE("checkpoint: files that do not fit are rejected with the reason") {
+  const std::string path = temp_path("reject.ckpt");
+  Sim a = make<Sim>();
+  a.run(0.001);
+  io::save_checkpoint(a, path);
+
+  SUBCASE("another format version") {
+    const std::string bad = temp_path("version.ckpt");
+    std::filesystem::copy_file(path, bad, std::filesystem::copy_options::overwrite_existing);
+    std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
+    const std::uint32_t v = 99;
+    f.seekp(8);
+    f.write(reinterpret_cast<const char*>(&v), sizeof v);
+    f.close();
+    Sim b = make<Sim>();
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, bad),
+                         doctest::Contains("format version = 99 is invalid; valid: 1"), InputError);
+  }
+  SUBCASE("another simulation type") {
+    SimEuler b = make<SimEuler>();
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, path),
+                         doctest::Contains("simulation type = 'sphere 3D"), InputError);
+  }
+  SUBCASE("other materials") {
+    Sim b = make<Sim>(2e7);
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, path), doctest::Contains("materials"), InputError);
+  }
+  SUBCASE("another number of walls") {
+    Sim b = make<Sim>();
+    b.add_wall(walls::Plane{{0, 0, 1}, {0, 0, -1}});
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, path), doctest::Contains("walls = 1 is invalid"),
+                         InputError);
+  }
+  SUBCASE("a truncated file") {
+    const std::string bad = temp_path("truncated.ckpt");
+    std::filesystem::copy_file(path, bad, std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::resize_file(bad, std::filesystem::file_size(bad) / 2);
+    Sim b = make<Sim>();
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, bad), doctest::Contains("truncated or corrupt"),
+                         InputError);
+  }
+  SUBCASE("a missing file and a file of another kind") {
+    Sim b = make<Sim>();
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, temp_path("none.ckpt")),
+                         doctest::Contains("missing or unreadable"), InputError);
+    const std::string text = temp_path("text.ckpt");
+    std::ofstream(text) << "time,step\n0,0\n";
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, text), doctest::Contains("file type is invalid"),
+                         InputError);
+  }
+  SUBCASE("a simulation that never started cannot be saved") {
+    Sim b = make<Sim>();
+    CHECK_THROWS_WITH_AS(io::save_checkpoint(b, temp_path("early.ckpt")),
+                         doctest::Contains("not initialised"), InputError);
+  }
+}
