@@ -517,6 +517,9 @@ public:
     }
     cond_.temperatures.push_back({g, std::move(T)});
     groups_dirty_ = true;
+    // a wall that starts to conduct changes the conductances (stored once by a thermal
+    // analysis) and the conduction time-step limit: initialise again (the time continues)
+    if (!group_walls(g).empty()) initialized_ = false;
   }
   /// Prescribed motion (the third seed's PRESCRIBE): a linear and an angular history, each
   /// optional, read as velocities or accelerations by `kind` ("vv", "va", "av", "aa"; linear
@@ -1794,11 +1797,12 @@ private:
     const long n = static_cast<long>(p.size());
     const bool control = cond_.any_control();
     if (control) cond_.save(p, time_, dt);
+    const bool spins = spins_();
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::before(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
-      if constexpr (Contact::has_torque) {
+      if (spins) {
         const A al = p.torque[i] * p.inv_inertia[i];
         IntegratorT::before(p.omega[i], al, dt, [&](const A& u, double h) { rotate(p.orientation[i], u, h); });
       } else {
@@ -1813,14 +1817,15 @@ private:
     const bool control = cond_.any_control();
     if constexpr (!IntegratorT::drift_before_forces)
       if (control) cond_.save(p, time_, dt);
+    const bool spins = spins_();
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::after(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
-      if constexpr (Contact::has_torque) {
+      if (spins) {
         const A al = p.torque[i] * p.inv_inertia[i];
         IntegratorT::after(p.omega[i], al, dt, [&](const A& u, double h) { rotate(p.orientation[i], u, h); });
-      } else if constexpr (!IntegratorT::drift_before_forces) {
+      } else if (!IntegratorT::drift_before_forces) {
         rotate(p.orientation[i], p.omega[i], dt);
       }
     }
@@ -1831,6 +1836,9 @@ private:
         cond_.drift(p, time_, dt, false, rotator());
     }
   }
+  /// True if angular velocities are integrated from torques: a contact model makes torques, or
+  /// a prescribed torque acts.
+  bool spins_() const { return Contact::has_torque || !cond_.torques.empty(); }
   static auto rotator() {
     return [](Orientation<D>& q, const A& w, double h) { rotate(q, w, h); };
   }

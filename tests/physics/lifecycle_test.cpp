@@ -13,12 +13,12 @@
 // centre is outside / inside" is a closed form: wherever a step number is checked exactly, the
 // crossing was placed between two step times with a margin of at least 5 % of a step (checked by
 // a REQUIRE), so round-off cannot move it.
-#include <grain/grain.hpp>
-#include <doctest/doctest.h>
 #include "../approx.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
 #include <limits>
 #include <set>
 #include <utility>
@@ -31,8 +31,8 @@ namespace {
 using Sim3 = Simulation<Sphere, search::CellList, presets::HertzMindlin>;
 using Sim2 = Simulation<Disk, search::CellList, presets::HertzMindlin>;
 
-constexpr double g0 = 9.81;  // [m/s^2]
-constexpr double dt = 1e-5;  // [s], far below the Rayleigh time (~4e-4 s) of these particles
+constexpr double g0 = 9.81; // [m/s^2]
+constexpr double dt = 1e-5; // [s], far below the Rayleigh time (~4e-4 s) of these particles
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 Material soft() {
@@ -169,16 +169,17 @@ template <class Sim>
 Tangent tangent_of(const Sim& sim, std::int64_t id, bool wall) {
   Tangent t;
   const std::size_t i = sim.index_of(id);
-  sim.for_each_contact([&](std::size_t a, std::size_t b, bool is_wall, const auto& geo,
-                           const auto& res) {
-    if (is_wall != wall || (a != i && (wall || b != i))) return;
-    t.force = a == i ? Vec3(res.tangent.force) : Vec3(-res.tangent.force);
-    t.normal = res.normal.force;
-    t.sliding = res.tangent.sliding;
-    const double kt = 8.0 * sim.pair_properties(0, 0).shear_eff * std::sqrt(geo.r_eff * geo.overlap);
-    t.reset = kt * geo.tangential_velocity.norm() * dt;
-    ++t.found;
-  });
+  sim.for_each_contact(
+      [&](std::size_t a, std::size_t b, bool is_wall, const auto& geo, const auto& res) {
+        if (is_wall != wall || (a != i && (wall || b != i))) return;
+        t.force = a == i ? Vec3(res.tangent.force) : Vec3(-res.tangent.force);
+        t.normal = res.normal.force;
+        t.sliding = res.tangent.sliding;
+        const double kt =
+            8.0 * sim.pair_properties(0, 0).shear_eff * std::sqrt(geo.r_eff * geo.overlap);
+        t.reset = kt * geo.tangential_velocity.norm() * dt;
+        ++t.found;
+      });
   return t;
 }
 
@@ -194,7 +195,8 @@ Tangent tangent_of(const Sim& sim, std::int64_t id, bool wall) {
 // with 10 steps to spare (REQUIRE), so the set is unambiguous. The survivors keep their ids and
 // sit at x0 + v T: the round-off of 5000 additions x += v dt is below 5000 ulp(0.2 m) ~ 1.4e-13
 // m, so 1e-12 m; their velocities are never touched (exact up to 1e-15 relative).
-TEST_CASE("lifecycle: a sink removes exactly the particles whose centres enter it while it is active") {
+TEST_CASE(
+    "lifecycle: a sink removes exactly the particles whose centres enter it while it is active") {
   const double r = 1e-3, T = 0.05, tb = 0.02, te = 0.03;
   const regions::Ball<3> ball{Vec3::Zero(), 0.02};
   const regions::Box<3> box{Vec3(0.10, -0.02, -0.02), Vec3(0.14, 0.02, 0.02)};
@@ -202,18 +204,18 @@ TEST_CASE("lifecycle: a sink removes exactly the particles whose centres enter i
     Vec3 x0, v;
   };
   const std::vector<Flight> flights = {
-      {Vec3(-0.1, 0, 0), Vec3(2, 0, 0)},            // enters the ball at 0.04 s
-      {Vec3(-0.1, 0.019, 0), Vec3(2, 0, 0)},        // grazes inside (0.95 R), enters at 0.047 s
-      {Vec3(-0.11, 0.021, 0), Vec3(2, 0, 0)},       // grazes outside (1.05 R): stays
-      {Vec3(-0.1, 0, 0.005), Vec3(1, 0, 0)},        // would enter after T (0.08 s): stays
-      {Vec3(0, -0.1, 0), Vec3(0, 1.5, 0)},          // would enter at 0.053 s > T: stays
+      {Vec3(-0.1, 0, 0), Vec3(2, 0, 0)},                // enters the ball at 0.04 s
+      {Vec3(-0.1, 0.019, 0), Vec3(2, 0, 0)},            // grazes inside (0.95 R), enters at 0.047 s
+      {Vec3(-0.11, 0.021, 0), Vec3(2, 0, 0)},           // grazes outside (1.05 R): stays
+      {Vec3(-0.1, 0, 0.005), Vec3(1, 0, 0)},            // would enter after T (0.08 s): stays
+      {Vec3(0, -0.1, 0), Vec3(0, 1.5, 0)},              // would enter at 0.053 s > T: stays
       {Vec3(0.05, 0.05, 0.05), Vec3(-1.2, -1.2, -1.2)}, // along a diagonal, enters at 0.032 s
-      {Vec3(0, 0.004, 0.1), Vec3(0, 0, -5)},        // fast, enters at 0.016 s
-      {Vec3(0.12, -0.05, 0), Vec3(0, 5, 0)},        // through the box at 0.006-0.014 s: inactive
-      {Vec3(0.12, -0.05, 0.01), Vec3(0, 2, 0)},     // in the box 0.015-0.035 s: removed
-      {Vec3(0.12, -0.05, -0.01), Vec3(0, 0.9, 0)},  // reaches the box at 0.033 s > t_end: stays
-      {Vec3(0.15, 0, 0.008), Vec3(-3, 0, 0)},       // through the inactive box, then the ball
-      {Vec3(0.13, 0.015, -0.015), Vec3(0, 0, 0)},   // at rest in the box: removed at t_begin
+      {Vec3(0, 0.004, 0.1), Vec3(0, 0, -5)},            // fast, enters at 0.016 s
+      {Vec3(0.12, -0.05, 0), Vec3(0, 5, 0)},       // through the box at 0.006-0.014 s: inactive
+      {Vec3(0.12, -0.05, 0.01), Vec3(0, 2, 0)},    // in the box 0.015-0.035 s: removed
+      {Vec3(0.12, -0.05, -0.01), Vec3(0, 0.9, 0)}, // reaches the box at 0.033 s > t_end: stays
+      {Vec3(0.15, 0, 0.008), Vec3(-3, 0, 0)},      // through the inactive box, then the ball
+      {Vec3(0.13, 0.015, -0.015), Vec3(0, 0, 0)},  // at rest in the box: removed at t_begin
   };
   const std::size_t n = flights.size();
   for (std::size_t a = 0; a < n; ++a)
@@ -238,8 +240,11 @@ TEST_CASE("lifecycle: a sink removes exactly the particles whose centres enter i
   Sim3 sim(params<Sim3>(Vec3::Zero()));
   const auto k = sim.add_material(soft());
   for (std::size_t a = 0; a < n; ++a)
-    sim.add_particle({.position = flights[a].x0, .radius = r, .material = k,
-                      .velocity = flights[a].v, .id = static_cast<std::int64_t>(100 + 7 * a)});
+    sim.add_particle({.position = flights[a].x0,
+                      .radius = r,
+                      .material = k,
+                      .velocity = flights[a].v,
+                      .id = static_cast<std::int64_t>(100 + 7 * a)});
   sim.add_sink(ball);
   sim.add_sink(box, tb, te);
   sim.run(T);
@@ -290,15 +295,14 @@ TEST_CASE("lifecycle: a bounding box removes a falling particle at the step its 
   }
   SUBCASE("2D triangle (clockwise, slanted edge)") {
     check_bounding_box<Sim2>(
-        regions::Polygon{{Vec2(-0.05, 0.05), Vec2(0.05, 0.05), Vec2(0.05, -0.05)}},
-        Vec2(0.02, 0.0), 0.02, Vec2(0.03, 0.04), {Vec2(-0.01, -0.0005), Vec2(0.0, 0.051)});
+        regions::Polygon{{Vec2(-0.05, 0.05), Vec2(0.05, 0.05), Vec2(0.05, -0.05)}}, Vec2(0.02, 0.0),
+        0.02, Vec2(0.03, 0.04), {Vec2(-0.01, -0.0005), Vec2(0.0, 0.051)});
   }
   SUBCASE("2D L-shape (non-convex)") {
-    check_bounding_box<Sim2>(
-        regions::Polygon{{Vec2(0, 0), Vec2(0.04, 0), Vec2(0.04, 0.01), Vec2(0.01, 0.01),
-                          Vec2(0.01, 0.04), Vec2(0, 0.04)}},
-        Vec2(0.03, 0.0071), 0.0071, Vec2(0.005, 0.03),
-        {Vec2(0.03, 0.02), Vec2(0.02, 0.03), Vec2(0.011, 0.011)});
+    check_bounding_box<Sim2>(regions::Polygon{{Vec2(0, 0), Vec2(0.04, 0), Vec2(0.04, 0.01),
+                                               Vec2(0.01, 0.01), Vec2(0.01, 0.04), Vec2(0, 0.04)}},
+                             Vec2(0.03, 0.0071), 0.0071, Vec2(0.005, 0.03),
+                             {Vec2(0.03, 0.02), Vec2(0.02, 0.03), Vec2(0.011, 0.011)});
   }
 }
 
@@ -307,8 +311,10 @@ TEST_CASE("lifecycle: a bounding box removes a falling particle at the step its 
 TEST_CASE("lifecycle: a bounding box acts only during its activity interval") {
   Sim3 sim(params<Sim3>(Vec3::Zero()));
   const auto k = sim.add_material(soft());
-  sim.add_particle({.position = Vec3(0.2, 0, 0), .radius = 1e-3, .material = k, .fixed = true, .id = 4});
-  sim.add_particle({.position = Vec3(0, 0, 0), .radius = 1e-3, .material = k, .fixed = true, .id = 5});
+  sim.add_particle(
+      {.position = Vec3(0.2, 0, 0), .radius = 1e-3, .material = k, .fixed = true, .id = 4});
+  sim.add_particle(
+      {.position = Vec3(0, 0, 0), .radius = 1e-3, .material = k, .fixed = true, .id = 5});
   const long nb = 300;
   sim.set_bounding_box(regions::Ball<3>{Vec3::Zero(), 0.1}, (nb - 0.5) * dt, inf);
   sim.steps(nb - 1);
@@ -343,7 +349,8 @@ TEST_CASE("lifecycle: a particle is invisible until its creation time, then fall
   const double tq = (nq - 0.5) * dt, tf = (nf - 0.7) * dt;
   const double zq = -0.5 * g0 * (nq * dt) * (nq * dt); // P's height at Q's activation
   sim.add_particle({.position = Vec3::Zero(), .radius = r, .material = k, .id = 1});
-  sim.add_particle({.position = Vec3(0.0099, 0, zq), .radius = r, .material = k, .creation_time = tq, .id = 2});
+  sim.add_particle(
+      {.position = Vec3(0.0099, 0, zq), .radius = r, .material = k, .creation_time = tq, .id = 2});
   const Vec3 xf(0.1, 0.05, 0.02);
   sim.add_particle({.position = xf, .radius = r, .material = k, .creation_time = tf, .id = 3});
   CHECK(sim.size() == 1);
@@ -383,7 +390,7 @@ TEST_CASE("lifecycle: a particle is invisible until its creation time, then fall
     const double vx = sim.particles().velocity[sim.index_of(1)].x();
     CHECK(vx == test::approx(-0.5 * dt * force / mass).epsilon(0.01));
     MESSAGE("creation: P's v_x after the activation " << vx << " m/s, closed form "
-                                                        << -0.5 * dt * force / mass);
+                                                      << -0.5 * dt * force / mass);
   }
 
   sim.steps(nf - nq - 2); // step nf - 1: F still waits
@@ -403,7 +410,7 @@ TEST_CASE("lifecycle: a particle is invisible until its creation time, then fall
   CHECK(std::abs(dv) <= g0 * dt);
   CHECK(sim.particles().position[i].x() == xf.x());
   MESSAGE("creation: free fall after activation: dz = " << dz << " m (bound " << g0 * tau * dt
-                                                       << "), dv = " << dv << " m/s");
+                                                        << "), dv = " << dv << " m/s");
 }
 
 // Velocity Verlet is exact for a constant acceleration, and a particle present from the start
@@ -414,7 +421,11 @@ TEST_CASE("lifecycle: an activated particle falls exactly like one present from 
   Sim3 sim(params<Sim3>(Vec3(0, 0, -g0)));
   const auto k = sim.add_material(soft());
   const long nf = 501;
-  sim.add_particle({.position = Vec3::Zero(), .radius = 5e-3, .material = k, .creation_time = (nf - 0.5) * dt, .id = 3});
+  sim.add_particle({.position = Vec3::Zero(),
+                    .radius = 5e-3,
+                    .material = k,
+                    .creation_time = (nf - 0.5) * dt,
+                    .id = 3});
   sim.steps(nf);
   REQUIRE(sim.is_active(3));
   sim.steps(1000);
@@ -433,7 +444,8 @@ TEST_CASE("lifecycle: an activated particle falls exactly like one present from 
 // never appears. Id 9, at rest in a sink that opens at 700.2 dt, also has destruction time
 // 700.5 dt: both remove it at step 701, and it is listed once. The others (user ids 100, 50, 3)
 // keep their ids and their flights x0 + v t (1e-12 m: round-off of 1000 additions).
-TEST_CASE("lifecycle: particles are removed at their destruction time, ids of the others unchanged") {
+TEST_CASE(
+    "lifecycle: particles are removed at their destruction time, ids of the others unchanged") {
   Sim3 sim(params<Sim3>(Vec3::Zero()));
   const auto k = sim.add_material(soft());
   const double r = 1e-3;
@@ -446,16 +458,34 @@ TEST_CASE("lifecycle: particles are removed at their destruction time, ids of th
                                     {3, Vec3(0.05, 0.05, 0.05), Vec3(0.1, 0.1, -0.4)}};
   for (const auto& f : keep)
     sim.add_particle({.position = f.x0, .radius = r, .material = k, .velocity = f.v, .id = f.id});
-  sim.add_particle({.position = Vec3(-0.05, 0, 0), .radius = r, .material = k,
-                    .velocity = Vec3(0, 0.1, 0), .destruction_time = 300.0 * dt, .id = 5});
-  sim.add_particle({.position = Vec3(-0.05, 0.05, 0), .radius = r, .material = k,
-                    .destruction_time = 500.5 * dt, .id = 6});
-  sim.add_particle({.position = Vec3(0, -0.05, 0), .radius = r, .material = k,
-                    .creation_time = 1000.2 * dt, .destruction_time = 1000.7 * dt, .id = 7});
-  sim.add_particle({.position = Vec3(0.05, -0.05, 0), .radius = r, .material = k,
-                    .creation_time = 200.5 * dt, .destruction_time = 400.5 * dt, .id = 8});
-  sim.add_particle({.position = Vec3(-0.05, -0.05, 0), .radius = r, .material = k,
-                    .destruction_time = 700.5 * dt, .id = 9});
+  sim.add_particle({.position = Vec3(-0.05, 0, 0),
+                    .radius = r,
+                    .material = k,
+                    .velocity = Vec3(0, 0.1, 0),
+                    .destruction_time = 300.0 * dt,
+                    .id = 5});
+  sim.add_particle({.position = Vec3(-0.05, 0.05, 0),
+                    .radius = r,
+                    .material = k,
+                    .destruction_time = 500.5 * dt,
+                    .id = 6});
+  sim.add_particle({.position = Vec3(0, -0.05, 0),
+                    .radius = r,
+                    .material = k,
+                    .creation_time = 1000.2 * dt,
+                    .destruction_time = 1000.7 * dt,
+                    .id = 7});
+  sim.add_particle({.position = Vec3(0.05, -0.05, 0),
+                    .radius = r,
+                    .material = k,
+                    .creation_time = 200.5 * dt,
+                    .destruction_time = 400.5 * dt,
+                    .id = 8});
+  sim.add_particle({.position = Vec3(-0.05, -0.05, 0),
+                    .radius = r,
+                    .material = k,
+                    .destruction_time = 700.5 * dt,
+                    .id = 9});
   sim.add_sink(regions::Ball<3>{Vec3(-0.05, -0.05, 0), 0.01}, 700.2 * dt);
   CHECK(sim.size() == 6);
   CHECK(sim.inactive_count() == 2);
@@ -479,7 +509,7 @@ TEST_CASE("lifecycle: particles are removed at their destruction time, ids of th
   CHECK(sim.inactive_count() == 1);     // id 7 still waits
   sim.steps(1000 - 701);
   CHECK(sim.inactive_count() == 1);
-  sim.steps(1);                         // step 1001: id 7's creation and destruction are due
+  sim.steps(1); // step 1001: id 7's creation and destruction are due
   CHECK(sim.inactive_count() == 0);
   CHECK(!sim.is_active(7));
   sim.steps(10);
@@ -519,14 +549,21 @@ Sim3 history_run(bool with_c, long n_rm) {
   Sim3 sim(prm);
   const auto k = sim.add_material(soft());
   const double gap = 2 * r - 1e-5; // about the static overlap under m g
-  sim.add_particle({.position = gap * n, .radius = r, .material = k, .velocity = Vec3(0, 0.05, 0), .id = 11});
+  sim.add_particle(
+      {.position = gap * n, .radius = r, .material = k, .velocity = Vec3(0, 0.05, 0), .id = 11});
   sim.add_particle({.position = Vec3::Zero(), .radius = r, .material = k, .fixed = true, .id = 10});
-  sim.add_particle({.position = Vec3(0, 0.03, -0.005), .radius = r, .material = k, .fixed = true, .id = 12});
+  sim.add_particle(
+      {.position = Vec3(0, 0.03, -0.005), .radius = r, .material = k, .fixed = true, .id = 12});
   const Vec3 w(0.03, 0.08, 0.0);
   sim.add_wall(walls::Plane{w - (r - 1e-5) * n, n}, {.material = k});
-  sim.add_particle({.position = w, .radius = r, .material = k, .velocity = Vec3(0, 0.05, 0), .id = 14});
-  sim.add_particle({.position = Vec3(0, 0.08, 0), .radius = r, .material = k, .fixed = true,
-                    .creation_time = (n_rm - 0.5) * dt, .id = 15});
+  sim.add_particle(
+      {.position = w, .radius = r, .material = k, .velocity = Vec3(0, 0.05, 0), .id = 14});
+  sim.add_particle({.position = Vec3(0, 0.08, 0),
+                    .radius = r,
+                    .material = k,
+                    .fixed = true,
+                    .creation_time = (n_rm - 0.5) * dt,
+                    .id = 15});
   if (with_c) {
     const Vec3 c(0, 0.05, -0.012);
     sim.add_particle({.position = c, .radius = r, .material = k, .fixed = true, .id = 13});
@@ -597,7 +634,8 @@ TEST_CASE("lifecycle: add_particle during a run keeps the contact histories") {
   Sim3 one = history_run(false, 100000), two = history_run(false, 100000);
   one.steps(n_rm - 1);
   two.steps(n_rm - 1);
-  one.add_particle({.position = Vec3(0, 0.05, -0.012), .radius = 5e-3, .material = 0, .fixed = true, .id = 13});
+  one.add_particle(
+      {.position = Vec3(0, 0.05, -0.012), .radius = 5e-3, .material = 0, .fixed = true, .id = 13});
   one.steps(1);
   two.steps(1);
   for (const bool wall : {false, true}) {
@@ -624,16 +662,21 @@ TEST_CASE("lifecycle: mass removal leaves unique ids and a complete neighbour li
   Sim3 sim(prm);
   const auto k = sim.add_material(soft());
   const double L = 0.06;
-  const std::vector<walls::Plane> box = {{Vec3(0, 0, 0), Vec3(0, 0, 1)},  {Vec3(0, 0, 0), Vec3(1, 0, 0)},
-                                         {Vec3(L, 0, 0), Vec3(-1, 0, 0)}, {Vec3(0, 0, 0), Vec3(0, 1, 0)},
+  const std::vector<walls::Plane> box = {{Vec3(0, 0, 0), Vec3(0, 0, 1)},
+                                         {Vec3(0, 0, 0), Vec3(1, 0, 0)},
+                                         {Vec3(L, 0, 0), Vec3(-1, 0, 0)},
+                                         {Vec3(0, 0, 0), Vec3(0, 1, 0)},
                                          {Vec3(0, L, 0), Vec3(0, -1, 0)}};
-  for (const auto& w : box) sim.add_wall(w, {.material = k});
+  for (const auto& w : box)
+    sim.add_wall(w, {.material = k});
   for (int kz = 0; kz < 8; ++kz)
     for (int j = 0; j < 5; ++j)
       for (int i = 0; i < 5; ++i)
-        sim.add_particle({.position = Vec3(0.007 + 0.0115 * i, 0.007 + 0.0115 * j, 0.006 + 0.0115 * kz),
-                          .radius = 4e-3 + 2.5e-4 * ((i + 2 * j + 3 * kz) % 5),
-                          .material = k, .velocity = Vec3(0, 0, -0.2)});
+        sim.add_particle(
+            {.position = Vec3(0.007 + 0.0115 * i, 0.007 + 0.0115 * j, 0.006 + 0.0115 * kz),
+             .radius = 4e-3 + 2.5e-4 * ((i + 2 * j + 3 * kz) % 5),
+             .material = k,
+             .velocity = Vec3(0, 0, -0.2)});
   const regions::Ball<3> sink{Vec3::Zero(), 0.025};
   sim.add_sink(sink, 0.1 + 0.5 * prm.time_step); // opens at the first step after 0.1 s
   sim.run(0.1);
@@ -653,7 +696,8 @@ TEST_CASE("lifecycle: mass removal leaves unique ids and a complete neighbour li
   CHECK(all.size() == 200);
   CHECK(*all.begin() == 0);
   CHECK(*all.rbegin() == 199);
-  for (std::size_t i = 0; i < p.size(); ++i) CHECK(!sink.contains(p.position[i]));
+  for (std::size_t i = 0; i < p.size(); ++i)
+    CHECK(!sink.contains(p.position[i]));
 
   std::size_t pairs = 0, walls = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -675,18 +719,23 @@ TEST_CASE("lifecycle: bad input is rejected with a message naming the object and
   Sim3 sim(params<Sim3>(Vec3::Zero()));
   const auto k = sim.add_material(soft());
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_WITH_AS(sim.add_particle({.radius = 1e-3, .material = k, .creation_time = nan, .id = 4}),
-                       doctest::Contains("sphere particle 4: creation_time = nan"), InputError);
-  CHECK_THROWS_WITH_AS(sim.add_particle({.radius = 1e-3, .material = k, .creation_time = inf, .id = 4}),
-                       doctest::Contains("creation_time = inf"), InputError);
-  CHECK_THROWS_WITH_AS(sim.add_particle({.radius = 1e-3, .material = k, .creation_time = 0.5,
-                                         .destruction_time = 0.5, .id = 4}),
-                       doctest::Contains("sphere particle 4: destruction_time = 0.5"), InputError);
-  CHECK_THROWS_WITH_AS(sim.add_particle({.radius = 1e-3, .material = k, .creation_time = 0.5,
-                                         .destruction_time = 0.2, .id = 4}),
-                       doctest::Contains("destruction_time = 0.2"), InputError);
-  CHECK_THROWS_WITH_AS(sim.add_particle({.radius = 1e-3, .material = k, .destruction_time = nan, .id = 4}),
-                       doctest::Contains("destruction_time = nan"), InputError);
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle({.radius = 1e-3, .material = k, .creation_time = nan, .id = 4}),
+      doctest::Contains("sphere particle 4: creation_time = nan"), InputError);
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle({.radius = 1e-3, .material = k, .creation_time = inf, .id = 4}),
+      doctest::Contains("creation_time = inf"), InputError);
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle(
+          {.radius = 1e-3, .material = k, .creation_time = 0.5, .destruction_time = 0.5, .id = 4}),
+      doctest::Contains("sphere particle 4: destruction_time = 0.5"), InputError);
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle(
+          {.radius = 1e-3, .material = k, .creation_time = 0.5, .destruction_time = 0.2, .id = 4}),
+      doctest::Contains("destruction_time = 0.2"), InputError);
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle({.radius = 1e-3, .material = k, .destruction_time = nan, .id = 4}),
+      doctest::Contains("destruction_time = nan"), InputError);
   CHECK(sim.size() == 0);
   CHECK(sim.inactive_count() == 0);
 
@@ -694,7 +743,8 @@ TEST_CASE("lifecycle: bad input is rejected with a message naming the object and
                        doctest::Contains("Simulation::set_bounding_box (Box): hi component = 0"),
                        InputError);
   CHECK_THROWS_WITH_AS(sim.add_sink(regions::Box<3>{Vec3(0, 0, 0), Vec3(1, 1, -1)}),
-                       doctest::Contains("Simulation::add_sink 0 (Box): hi component = -1"), InputError);
+                       doctest::Contains("Simulation::add_sink 0 (Box): hi component = -1"),
+                       InputError);
   CHECK_THROWS_WITH_AS(sim.add_sink(regions::Box<3>{Vec3(0, nan, 0), Vec3(1, 1, 1)}),
                        doctest::Contains("(Box): lo component = nan"), InputError);
   CHECK_THROWS_WITH_AS(sim.add_sink(regions::Ball<3>{Vec3::Zero(), 0.0}),
@@ -704,16 +754,19 @@ TEST_CASE("lifecycle: bad input is rejected with a message naming the object and
   CHECK_THROWS_WITH_AS(sim.add_sink(regions::Ball<3>{Vec3::Zero(), 1.0}, 2.0, 1.0),
                        doctest::Contains("Simulation::add_sink 0: t_end = 1"), InputError);
   CHECK_THROWS_WITH_AS(sim.set_bounding_box(regions::Ball<3>{Vec3::Zero(), 1.0}, nan),
-                       doctest::Contains("Simulation::set_bounding_box: t_begin = nan"), InputError);
+                       doctest::Contains("Simulation::set_bounding_box: t_begin = nan"),
+                       InputError);
   CHECK_THROWS_WITH_AS(sim.add_sink(regions::Ball<3>{Vec3::Zero(), 1.0}, 0.0, nan),
                        doctest::Contains("t_end = nan"), InputError);
 
   Sim2 sim2(params<Sim2>(Vec2::Zero()));
   sim2.add_material(soft());
   CHECK_THROWS_WITH_AS(sim2.add_sink(regions::Polygon{{Vec2(0, 0), Vec2(1, 0)}}),
-                       doctest::Contains("Simulation::add_sink 0 (Polygon): vertices = 2"), InputError);
-  CHECK_THROWS_WITH_AS(sim2.set_bounding_box(regions::Polygon{{Vec2(0, 0), Vec2(1, 1), Vec2(2, 2)}}),
-                       doctest::Contains("Simulation::set_bounding_box (Polygon): area = 0"), InputError);
+                       doctest::Contains("Simulation::add_sink 0 (Polygon): vertices = 2"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(
+      sim2.set_bounding_box(regions::Polygon{{Vec2(0, 0), Vec2(1, 1), Vec2(2, 2)}}),
+      doctest::Contains("Simulation::set_bounding_box (Polygon): area = 0"), InputError);
   // collinear vertices whose shoelace sum is not exactly zero in floating point (~2e-17 m^2)
   CHECK_THROWS_WITH_AS(
       sim2.set_bounding_box(regions::Polygon{{Vec2(0.1, 0.2), Vec2(0.4, 0.5), Vec2(0.7, 0.8)}}),
@@ -725,7 +778,8 @@ TEST_CASE("lifecycle: bad input is rejected with a message naming the object and
   CHECK_THROWS_WITH_AS(sim2.add_sink(regions::Ball<2>{Vec2::Zero(), nan}),
                        doctest::Contains("(Ball): radius = nan"), InputError);
   // valid input is accepted (including a degenerate-looking but valid thin triangle)
-  CHECK_NOTHROW(sim2.add_sink(regions::Polygon{{Vec2(0, 0), Vec2(1, 0), Vec2(0.5, 1e-3)}}, 0.0, 0.0));
+  CHECK_NOTHROW(
+      sim2.add_sink(regions::Polygon{{Vec2(0, 0), Vec2(1, 0), Vec2(0.5, 1e-3)}}, 0.0, 0.0));
 }
 
 // Ids identify particles for life (removal by destruction time, index_of, is_active, groups), so
@@ -734,11 +788,14 @@ TEST_CASE("lifecycle: an id already in use is rejected") {
   Sim3 sim(params<Sim3>(Vec3::Zero()));
   const auto k = sim.add_material(soft());
   const auto a = sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = k});
-  sim.add_particle({.position = Vec3(0.1, 0, 0), .radius = 1e-3, .material = k, .creation_time = 1.0, .id = 8});
-  CHECK_THROWS_WITH_AS(sim.add_particle({.position = Vec3(0.2, 0, 0), .radius = 1e-3, .material = k, .id = a}),
-                       doctest::Contains("id = 0"), InputError);
-  CHECK_THROWS_WITH_AS(sim.add_particle({.position = Vec3(0.3, 0, 0), .radius = 1e-3, .material = k, .id = 8}),
-                       doctest::Contains("id = 8"), InputError);
+  sim.add_particle(
+      {.position = Vec3(0.1, 0, 0), .radius = 1e-3, .material = k, .creation_time = 1.0, .id = 8});
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle({.position = Vec3(0.2, 0, 0), .radius = 1e-3, .material = k, .id = a}),
+      doctest::Contains("id = 0"), InputError);
+  CHECK_THROWS_WITH_AS(
+      sim.add_particle({.position = Vec3(0.3, 0, 0), .radius = 1e-3, .material = k, .id = 8}),
+      doctest::Contains("id = 8"), InputError);
   CHECK(sim.size() == 1);
   CHECK(sim.inactive_count() == 1);
 }

@@ -138,6 +138,7 @@ public:
   /// A particle under motion control or restraint (refreshed with the indices).
   struct Control {
     std::uint32_t i = 0;
+    std::int64_t id = -1;          // particle id (the per-step state follows it across a refresh)
     int linear = -1, angular = -1; // motion condition, -1 = none
     std::vector<V> lin;            // restrained linear directions (orthonormal)
     std::vector<Vec3> ang;         // restrained angular directions (3D)
@@ -215,7 +216,7 @@ public:
       }
       std::sort(m.begin(), m.end());
     }
-    build_controls(n);
+    build_controls(id);
   }
 
   /// Sums the prescribed forces and torques at time t into the force arrays.
@@ -402,9 +403,17 @@ private:
     if (!c.ang_on) restrain_angular(p.omega[c.i], c);
   }
 
-  void build_controls(std::size_t n) {
+  void build_controls(const std::vector<std::int64_t>& id) {
+    // The per-step state (x0, v0, ..., lin_on, ang_on, set by save() and used by drift(),
+    // predict() and finish()) belongs to the particle, not to its index: velocity Verlet re-sorts
+    // the particles at a neighbour-list rebuild between save() and finish(), and the refresh
+    // that follows must not drop it, so it is carried over by id.
+    std::vector<Control> old = std::move(controls);
+    std::sort(old.begin(), old.end(),
+              [](const Control& a, const Control& b) { return a.id < b.id; });
     controls.clear();
     if (linear_motion.empty() && angular_motion.empty() && restraints.empty()) return;
+    const std::size_t n = id.size();
     std::vector<int> slot(n, -1);
     auto control_of = [&](std::uint32_t i) -> Control& {
       if (slot[i] < 0) {
@@ -429,6 +438,20 @@ private:
       }
     std::sort(controls.begin(), controls.end(),
               [](const Control& a, const Control& b) { return a.i < b.i; });
+    for (auto& c : controls) {
+      c.id = id[c.i];
+      const auto it = std::lower_bound(old.begin(), old.end(), c.id,
+                                       [](const Control& a, std::int64_t x) { return a.id < x; });
+      if (it == old.end() || it->id != c.id) continue;
+      c.x0 = it->x0;
+      c.v0 = it->v0;
+      c.am = it->am;
+      c.w0 = it->w0;
+      c.alpha = it->alpha;
+      c.q0 = it->q0;
+      c.lin_on = it->lin_on;
+      c.ang_on = it->ang_on;
+    }
   }
 
   /// Orthonormal basis of the union of two orthonormal sets (directions already spanned are
