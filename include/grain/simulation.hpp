@@ -146,6 +146,10 @@ struct SimulationParams {
   /// wall's half leaves the system). 0 (default): dissipation makes no heat. Hysteresis of
   /// plastic normal models, sticking tangential dashpots and rolling resistance are not counted.
   double dissipation_heating = 0.0;
+  /// If true, the simulation accumulates the energy dissipated by the contacts and the global
+  /// damping (Simulation::dissipated_energy); off by default (it costs a few operations per
+  /// contact).
+  bool track_dissipation = false;
   /// Settings of the fluid-cell size method (Voronoi conduction models only).
   typename CellSize::Params cells{};
 };
@@ -782,6 +786,7 @@ public:
     if constexpr (thermal) {
       if (analysis() == Analysis::thermal) store_conductances();
     }
+    if (params_.track_dissipation && std::isnan(elastic_start_)) elastic_start_ = elastic_energy();
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
         // forces at the initial positions; histories are not advanced by this evaluation
@@ -877,7 +882,7 @@ public:
     ar(step_, steps_since_rebuild_, step0_, next_id_, gravity_now_);
     ar(over_[0], over_[1], over_[2], over_[3], over_[4], over_[5]);
     ar(pending_, doomed_, removed_ids_);
-    ar(counters_.steps, counters_.rebuilds, counters_.particle_steps);
+    ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     if constexpr (Archive::reading) {
       origin_.clear();
       groups_dirty_ = true;
@@ -1100,6 +1105,17 @@ public:
       e += r.normal.elastic_energy + r.tangent.elastic_energy;
     });
     return e;
+  }
+  /// Energy dissipated since the start [J] (NaN unless SimulationParams::track_dissipation):
+  /// the work the contacts and the global damping took from the bodies minus the growth of the
+  /// elastic energy stored in the contacts. It covers every dissipative part of the contact
+  /// laws (viscous damping, friction, plastic hysteresis, rolling resistance) and the energy a
+  /// tangential spring holds when its contact opens. The work is summed with the velocities the
+  /// forces see (second order with velocity Verlet).
+  double dissipated_energy() const {
+    if (!params_.track_dissipation) return std::numeric_limits<double>::quiet_NaN();
+    const double start = std::isnan(elastic_start_) ? 0.0 : elastic_start_;
+    return -work_in_ - (elastic_energy() - start);
   }
   /// Gravitational potential energy relative to the origin [J].
   double potential_energy() const {
@@ -1501,6 +1517,8 @@ private:
       if (in_step && cond_.any_control())
         cond_.predict(p, vf_, Contact::has_torque ? &wf_ : nullptr, time_, dt_);
     }
+    tracking_ = params_.track_dissipation && in_step;
+    if (tracking_) work_rows_.assign(p.size(), 0.0);
     // deterministic chunks: the chunk length depends on N and the list span only
     const long span = static_cast<long>(list_.max_span);
     const long chunk = std::max({span, (n + 63) / 64, 1L});
@@ -1518,6 +1536,26 @@ private:
     if (damping_fn_) {
       ct = damping_fn_->first(t);
       cr = damping_fn_->second(t);
+    }
+    if (tracking_) {
+      // power of the global damping (negative: it removes energy)
+      const V dv = mass_damping_ ? V(mass_damping_->first(t)) : V(V::Zero());
+      const A dw = mass_damping_ ? A(mass_damping_->second(t)) : zero<A>();
+      for (long i = 0; i < n; ++i) {
+        const V& v = force_velocity()[i];
+        double w = -ct * v.squaredNorm() - p.mass[i] * v.dot(dv.cwiseProduct(v));
+        if constexpr (Contact::has_torque) {
+          const A& o = force_omega()[i];
+          if constexpr (D == 2)
+            w -= cr * o * o + p.inertia[i] * dw * o * o;
+          else
+            w -= cr * o.squaredNorm() + p.inertia[i] * o.dot(dw.cwiseProduct(o));
+        }
+        work_rows_[static_cast<std::size_t>(i)] += w;
+      }
+      double sum = 0.0;
+      for (double w : work_rows_) sum += w;
+      work_in_ += sum * dt_;
     }
     if (!mass_damping_) {
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
@@ -1570,6 +1608,8 @@ private:
     const auto& vf = force_velocity();
     const auto& wf = force_omega();
     [[maybe_unused]] const bool heat = heat_on_;
+    const bool track = tracking_;
+    double work = 0.0; // power the contacts of row i deliver to the bodies [W]
     for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
       const auto j = list_.partners[e];
       if (!touching_pair(i, j, g, vf, wf)) {
@@ -1595,6 +1635,10 @@ private:
       if constexpr (Contact::has_torque) {
         p.torque[i] += r.torque_i;
         p.torque[j] += r.torque_j;
+      }
+      if (track) {
+        work += r.force.dot(vf[i] - vf[j]);
+        if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
       }
       if constexpr (thermal) {
         if (heat) {
@@ -1627,6 +1671,10 @@ private:
       auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
       p.force[i] += r.force;
       if constexpr (Contact::has_torque) p.torque[i] += r.torque_i;
+      if (track) {
+        work += r.force.dot(vf[i] - walls_[w].velocity_at(g.point));
+        if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]);
+      }
       if constexpr (thermal) {
         if (heat) {
           if (walls_[w].conducts()) {
@@ -1638,6 +1686,7 @@ private:
         }
       }
     }
+    if (track) work_rows_[i] = work;
   }
 
   // ---------------------------------------------------------------- heat
@@ -1988,6 +2037,11 @@ private:
   /// conductivity (NaN = the material's), when var_pairs_.
   std::array<std::vector<double>, 6> over_;
   std::vector<PairProperties> pair_cache_, wall_pair_cache_; ///< per list entry, when var_pairs_
+  // energy bookkeeping (SimulationParams::track_dissipation)
+  bool tracking_ = false;          ///< accumulating in the current force evaluation
+  std::vector<double> work_rows_;  ///< power delivered by the contacts of each row and damping [W]
+  double work_in_ = 0.0;           ///< work delivered to the bodies by contacts and damping [J]
+  double elastic_start_ = std::numeric_limits<double>::quiet_NaN(); ///< elastic energy at start [J]
   mutable detail::ConditionSet<D> cond_; ///< (its indices are refreshed lazily)
   mutable bool groups_dirty_ = true;
   std::optional<VectorTimeFunction<D>> gravity_fn_;
