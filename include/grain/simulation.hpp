@@ -1118,10 +1118,13 @@ public:
     return -work_in_ - (elastic_energy() - start);
   }
   /// Gravitational potential energy relative to the origin [J].
+  /// With gravity that changes in time (set_gravity with a function), the potential of the
+  /// current gravity.
   double potential_energy() const {
     double e = 0.0;
+    const V g = gravity();
     for (std::size_t i = 0; i < particles_.size(); ++i)
-      e -= particles_.mass[i] * params_.gravity.dot(particles_.position[i]);
+      e -= particles_.mass[i] * g.dot(particles_.position[i]);
     return e;
   }
 

@@ -1,16 +1,27 @@
 // Writes legacy VTK files of a small 2D disk simulation and a small 3D sphere simulation with
-// io::every(interval, io::vtk(prefix)), together with expected.json: the state of each simulation
-// at every output, taken straight from its arrays. read_vtk.py reads the VTK files back and
-// compares them with expected.json.
+// io::every(interval, io::vtk(prefix, ...), ...), together with expected.json: the state of each
+// simulation at every output, taken straight from its arrays. read_vtk.py reads the VTK files back
+// and compares them with expected.json.
+//
+// Each run feeds several writers from the same every(), one series each (see kVariants): ASCII
+// and binary, every field and a chosen few, every particle, a group and an empty group.
+// expected.json records, per series, the options it was written with; per run, every field of
+// every particle, the walls, the contacts and the groups' members at every output.
+//
+// It also checks the errors: a thermal field asked of a mechanical simulation, an unknown field
+// name and an unknown group are InputErrors that name what is wrong and what is valid, raised
+// before any file is written.
 //
 // Usage: grain_write_vtk <output directory>
 
 #include <grain/grain.hpp>
 
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <variant>
@@ -38,6 +49,65 @@ std::string vec(const grain::Vec<D>& v) {
 }
 std::string angular(double w) { return "[0, 0, " + num(w) + "]"; }
 std::string angular(const grain::Vec3& w) { return vec<3>(w); }
+std::string orientation(double angle) { return num(angle); }
+std::string orientation(const Eigen::Quaterniond& q) {
+  return "[" + num(q.w()) + ", " + num(q.x()) + ", " + num(q.y()) + ", " + num(q.z()) + "]";
+}
+std::string quoted(const std::string& s) { return "\"" + s + "\""; }
+
+/// One series written from a run: its name's suffix and the options of its io::vtk writer.
+struct Variant {
+  const char* suffix;                      // series name = run name + suffix
+  const char* format;                      // "ascii" or "binary"
+  std::vector<std::string> fields;         // for io::fields::named ({"all"} = the default)
+  std::vector<std::string> thermal_fields; // added to `fields` in a thermal run
+  const char* group;                       // "" = every particle
+  bool contacts;
+  std::optional<grain::io::Fields> bits{}; // if given: the writer's fields, = named(fields)
+};
+namespace fields = grain::io::fields;
+/// Groups of the runs: "pair" (two particles, so that some contacts touch it and some do not)
+/// and "nobody" (empty).
+const std::vector<Variant> kVariants = {
+    {"", "ascii", {"all"}, {}, "", true}, // the positional io::vtk(prefix, plane_size, contacts)
+    {"_binary", "binary", {"all"}, {}, "", true},
+    {"_fields", "ascii", {"velocity", "orientation", "material", "torque"}, {}, "", false,
+     fields::torque | fields::material | fields::velocity | fields::orientation},
+    {"_fields_binary", "binary", {"mass", "id", "omega"}, {"heat_rate", "heat_capacity"}, "",
+     false},
+    {"_group", "binary", {"all"}, {}, "pair", true},
+    {"_group_fields", "ascii", {"radius", "force"}, {"temperature"}, "pair", true},
+    {"_empty", "ascii", {"all"}, {}, "nobody", true},
+    {"_empty_binary", "binary", {"id", "velocity"}, {}, "nobody", true},
+};
+const char* const kGroups[] = {"pair", "nobody"};
+
+/// The field names of a variant in a run.
+std::vector<std::string> field_names(const Variant& v, bool thermal) {
+  std::vector<std::string> out = v.fields;
+  if (thermal) out.insert(out.end(), v.thermal_fields.begin(), v.thermal_fields.end());
+  return out;
+}
+
+/// The io::vtk writer of a variant (the first one through the positional overload).
+grain::io::VtkWriter writer(const std::filesystem::path& prefix, const Variant& v, bool thermal,
+                            bool& ok) {
+  namespace io = grain::io;
+  if (v.suffix[0] == '\0') return io::vtk(prefix.string(), kPlaneSize, v.contacts);
+  const io::Fields named = io::fields::named(field_names(v, thermal));
+  if (v.bits && *v.bits != named) {
+    std::fprintf(stderr, "write_vtk: %s: fields::named gives bits %#x, the operators %#x\n",
+                 v.suffix, named.bits, v.bits->bits);
+    ok = false;
+  }
+  return io::vtk(prefix.string(),
+                 {.plane_size = kPlaneSize,
+                  .contacts = v.contacts,
+                  .fields = v.bits ? *v.bits : named,
+                  .group = v.group,
+                  .format = std::strcmp(v.format, "binary") == 0 ? io::VtkFormat::binary
+                                                                   : io::VtkFormat::ascii});
+}
 
 /// JSON text of one wall geometry.
 std::string wall_json(const grain::walls::Segment& g) {
@@ -71,10 +141,14 @@ struct Recorder {
         << ", \"radius\": " << num(p.radius[i])
         << ", \"velocity\": " << vec<Sim::dimension>(p.velocity[i])
         << ", \"omega\": " << angular(p.omega[i])
-        << ", \"force\": " << vec<Sim::dimension>(p.force[i]);
+        << ", \"force\": " << vec<Sim::dimension>(p.force[i])
+        << ", \"torque\": " << angular(p.torque[i]) << ", \"mass\": " << num(p.mass[i])
+        << ", \"orientation\": " << orientation(p.orientation[i])
+        << ", \"material\": " << p.material[i];
       if constexpr (Sim::thermal)
         o << ", \"temperature\": " << num(p.temperature[i])
-          << ", \"heat_rate\": " << num(p.heat_rate[i]);
+          << ", \"heat_rate\": " << num(p.heat_rate[i])
+          << ", \"heat_capacity\": " << num(p.heat_capacity[i]);
       o << "}";
     }
     o << "],\n       \"walls\": [";
@@ -104,7 +178,14 @@ struct Recorder {
         << ", \"heat_rate\": " << num(q) << "}";
       first = false;
     });
-    o << "]}";
+    o << "],\n       \"groups\": {";
+    for (const char* g : kGroups) {
+      o << (g == kGroups[0] ? "" : ", ") << quoted(g) << ": [";
+      const auto& members = sim.group_indices(g);
+      for (std::size_t k = 0; k < members.size(); ++k) o << (k ? ", " : "") << p.id[members[k]];
+      o << "]";
+    }
+    o << "}}";
     frames->push_back(o.str());
   }
 };
@@ -113,45 +194,155 @@ struct Recorder {
 template <class Sim>
 bool exercised(const Sim& sim, const char* name) {
   const auto& p = sim.particles();
-  bool force = false, velocity = false, omega = false;
+  bool force = false, velocity = false, omega = false, torque = false;
   for (std::size_t i = 0; i < p.size(); ++i) {
     force = force || p.force[i].norm() > 0;
     velocity = velocity || p.velocity[i].norm() > 0;
     omega = omega || grain::norm(p.omega[i]) > 0;
+    torque = torque || grain::norm(p.torque[i]) > 0;
   }
   const auto [pp, pw] = sim.contact_counts();
-  if (force && velocity && omega && pp > 0 && pw > 0) return true;
+  if (force && velocity && omega && torque && pp > 0 && pw > 0) return true;
   std::fprintf(stderr,
                "write_vtk: the %s set-up is degenerate (force %d, velocity %d, omega %d, "
-               "%zu particle and %zu wall contacts)\n",
-               name, force, velocity, omega, pp, pw);
+               "torque %d, %zu particle and %zu wall contacts)\n",
+               name, force, velocity, omega, torque, pp, pw);
   return false;
 }
 
-/// Runs a simulation with VTK output and returns the JSON text of its series.
+/// The writers of every variant of a run, as one output action.
+struct Writers {
+  std::vector<grain::io::VtkWriter> all;
+  template <class Sim>
+  void start(const Sim& sim) {
+    for (auto& w : all) w.start(sim);
+  }
+  template <class Sim>
+  void operator()(const Sim& sim) {
+    for (auto& w : all) w(sim);
+  }
+};
+
+/// Expects f() to throw grain::InputError whose message holds every one of `words`.
+template <class F>
+bool expect_input_error(const char* what, F f, std::initializer_list<const char*> words) {
+  try {
+    f();
+  } catch (const grain::InputError& e) {
+    for (const char* w : words) {
+      if (std::strstr(e.what(), w) == nullptr) {
+        std::fprintf(stderr, "write_vtk: %s: the message '%s' does not mention '%s'\n", what,
+                     e.what(), w);
+        return false;
+      }
+    }
+    return true;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "write_vtk: %s: threw '%s', expected an InputError\n", what, e.what());
+    return false;
+  }
+  std::fprintf(stderr, "write_vtk: %s: no error, expected an InputError\n", what);
+  return false;
+}
+
+/// The input errors of io::vtk, after the run; each must be raised before a file is written
+/// (read_vtk.py reports any file of a series it does not know, such as these "bad_" ones).
 template <class Sim>
-std::string run_series(Sim& sim, const std::filesystem::path& dir, const std::string& name,
-                       bool& ok) {
+bool check_errors(Sim& sim, const std::filesystem::path& dir) {
+  namespace io = grain::io;
+  const double interval = sim.time_step();
+  bool ok = true;
+  if constexpr (!Sim::thermal) {
+    ok = expect_input_error(
+             "a thermal field of a mechanical simulation (io::vtk)",
+             [&] {
+               sim.steps(1, io::every(interval,
+                                      io::vtk((dir / "bad_fields").string(),
+                                              {.fields = io::fields::velocity |
+                                                         io::fields::temperature})));
+             },
+             {"grain::io::vtk: field = 'temperature'", "mechanical simulation",
+              "valid values: id, radius, velocity, omega, force, torque, mass, orientation, "
+              "material, all"}) &&
+         ok;
+    ok = expect_input_error(
+             "a thermal field of a mechanical simulation (write_particles_vtk)",
+             [&] {
+               io::write_particles_vtk(sim, (dir / "bad_direct_particles_000000.vtk").string(),
+                                       io::fields::id | io::fields::heat_capacity);
+             },
+             {"write_particles_vtk", "field = 'heat_capacity'", "valid values: id, radius"}) &&
+         ok;
+  }
+  ok = expect_input_error(
+           "an unknown field name",
+           [] { (void)io::fields::named({"velocity", "temprature"}); },
+           {"field = 'temprature'", "temperature, heat_rate, heat_capacity, all"}) &&
+       ok;
+  ok = expect_input_error(
+           "an unknown group",
+           [&] {
+             sim.steps(1, io::every(interval, io::vtk((dir / "bad_group").string(),
+                                                      {.group = "nosuch"})));
+           },
+           {"'nosuch'", "'pair'", "'nobody'"}) &&
+       ok;
+  // outside every() the writer first runs after a step: start() must check before the run
+  const long steps = sim.step_count();
+  ok = expect_input_error(
+           "an unknown group (io::vtk as an observer of steps)",
+           [&] {
+             sim.steps(1, io::vtk((dir / "bad_group_observer").string(), {.group = "nosuch"}));
+           },
+           {"'nosuch'", "'pair'"}) &&
+       ok;
+  if (sim.step_count() != steps) {
+    std::fprintf(stderr, "write_vtk: the unknown group was found only after the run started\n");
+    ok = false;
+  }
+  return ok;
+}
+
+/// Runs a simulation with one io::vtk writer per variant; appends the JSON text of the run to
+/// `runs` and of its series to `series`.
+template <class Sim>
+void run_series(Sim& sim, const std::filesystem::path& dir, const std::string& name,
+                std::string& runs, std::string& series, bool& ok) {
   sim.initialize();
   const double interval = static_cast<double>(kStepsPerOutput) * sim.time_step();
   std::vector<std::string> frames;
-  sim.steps(kSteps, grain::io::every(interval,
-                                     grain::io::vtk((dir / name).string(), kPlaneSize, true),
-                                     Recorder{&frames}));
+  Writers writers;
+  for (const auto& v : kVariants) {
+    writers.all.push_back(writer(dir / (name + v.suffix), v, Sim::thermal, ok));
+    std::string fields;
+    for (const auto& f : field_names(v, Sim::thermal))
+      fields += (fields.empty() ? "" : ", ") + quoted(f);
+    series += (series.empty() ? "\n  " : ",\n  ") + quoted(name + v.suffix) +
+              ": {\"run\": " + quoted(name) + ", \"format\": " + quoted(v.format) +
+              ", \"fields\": [" + fields + "], \"group\": " +
+              (v.group[0] ? quoted(v.group) : std::string("null")) +
+              ", \"contacts\": " + (v.contacts ? "true" : "false") + "}";
+  }
+  sim.steps(kSteps, grain::io::every(interval, std::move(writers), Recorder{&frames}));
   if (static_cast<long>(frames.size()) != kExpectedFiles) {
     std::fprintf(stderr, "write_vtk: %s: every() fired %zu times, expected %ld\n", name.c_str(),
                  frames.size(), kExpectedFiles);
     ok = false;
   }
   ok = exercised(sim, name.c_str()) && ok;
-  std::string s = "{\"dimension\": " + std::to_string(Sim::dimension) +
-                  ", \"particle_count\": " + std::to_string(sim.size()) +
-                  ", \"wall_count\": " + std::to_string(sim.walls().size()) +
-                  ", \"wall_cells\": " + std::to_string(sim.walls().size()) +
-                  ", \"files\": " + std::to_string(kExpectedFiles) +
-                  ", \"final_time\": " + num(sim.time()) + ",\n     \"frames\": [";
-  for (std::size_t k = 0; k < frames.size(); ++k) s += (k ? ",\n      " : "\n      ") + frames[k];
-  return s + "]}";
+  const double final_time = sim.time();
+  ok = check_errors(sim, dir) && ok;
+  runs += (runs.empty() ? "\n  " : ",\n  ") + quoted(name) +
+          ": {\"dimension\": " + std::to_string(Sim::dimension) +
+          ", \"thermal\": " + (Sim::thermal ? "true" : "false") +
+          ", \"particle_count\": " + std::to_string(sim.size()) +
+          ", \"wall_count\": " + std::to_string(sim.walls().size()) +
+          ", \"wall_cells\": " + std::to_string(sim.walls().size()) +
+          ", \"files\": " + std::to_string(kExpectedFiles) +
+          ", \"final_time\": " + num(final_time) + ",\n     \"frames\": [";
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    runs += (k ? ",\n      " : "\n      ") + frames[k];
+  runs += "]}";
 }
 
 grain::Material material() {
@@ -172,7 +363,7 @@ using ThermalContact =
     grain::Interaction<grain::normal::LinearSpringDashpot, grain::tangent::SpringDashpotSlider,
                        grain::rolling::None, grain::conduction::BatchelorOBrien>;
 
-std::string disks(const std::filesystem::path& dir, bool& ok) {
+void disks(const std::filesystem::path& dir, std::string& runs, std::string& series, bool& ok) {
   grain::SimulationParams<2, Contact, grain::search::AllPairs> params;
   params.gravity = grain::Vec2(0.0, -9.81);
   grain::Simulation<grain::Disk, grain::search::AllPairs, Contact> sim(params,
@@ -200,10 +391,14 @@ std::string disks(const std::filesystem::path& dir, bool& ok) {
   drum.velocity = grain::Vec2(-0.003, 0.001);
   drum.omega = 2.0;
   sim.add_wall(grain::walls::Circle{{0.0007, -0.0003}, 0.1}, drum);
-  return run_series(sim, dir, "disks", ok);
+  // 7 touches 3 and the floor; 3 and 12 touch each other and the floor without 7 or 40
+  sim.add_group("pair", {7, 40});
+  sim.add_group("nobody", {});
+  run_series(sim, dir, "disks", runs, series, ok);
 }
 
-std::string spheres(const std::filesystem::path& dir, bool& ok) {
+void spheres(const std::filesystem::path& dir, std::string& runs, std::string& series,
+             bool& ok) {
   grain::Simulation<grain::Sphere, grain::search::CellList, ThermalContact>::Params params;
   params.gravity = grain::Vec3(0.0, 0.0, -9.81);
   params.initial_temperature = 310.0;
@@ -238,7 +433,10 @@ std::string spheres(const std::filesystem::path& dir, bool& ok) {
   sim.add_wall(grain::walls::Triangle{{0.05, -0.05, 0.03}, {0.15, -0.045, 0.031},
                                       {0.1, 0.05, 0.0295}},
                tilted);
-  return run_series(sim, dir, "spheres", ok);
+  // 4 touches 20 and the floor; 20, 9 and 15 have contacts without 4 or 1
+  sim.add_group("pair", {4, 1});
+  sim.add_group("nobody", {});
+  run_series(sim, dir, "spheres", runs, series, ok);
 }
 
 } // namespace
@@ -252,11 +450,12 @@ int main(int argc, char** argv) {
     const std::filesystem::path dir(argv[1]);
     std::filesystem::create_directories(dir);
     bool ok = true;
-    const std::string d = disks(dir, ok);
-    const std::string s = spheres(dir, ok);
+    std::string runs, series;
+    disks(dir, runs, series, ok);
+    spheres(dir, runs, series, ok);
     std::ofstream o(dir / "expected.json");
     o << "{\"circle_segments\": " << kCircleSegments << ", \"plane_size\": " << num(kPlaneSize)
-      << ",\n \"series\": {\n  \"disks\": " << d << ",\n  \"spheres\": " << s << "}}\n";
+      << ",\n \"series\": {" << series << "},\n \"runs\": {" << runs << "}}\n";
     o.close();
     if (!o) {
       std::fprintf(stderr, "write_vtk: cannot write %s\n", (dir / "expected.json").string().c_str());

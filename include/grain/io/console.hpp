@@ -1,18 +1,47 @@
 #pragma once
 /// \file console.hpp
-/// Console output: a summary at the start and end of a run, a progress line with the time left,
-/// and `every(interval, actions...)` to call output actions at a fixed simulated-time interval.
-/// These helpers only read a simulation.
+/// Console output, and how often output actions run. These helpers only read a simulation.
+///
+/// | helper | prints |
+/// |---|---|
+/// | `summary(out = stdout)` | at the start: dimension, shape, particles (and those waiting for their creation time), walls, materials, contact models, search, integrator, time step, the time span of a run() and contacts; at the end: time and steps, wall time, particle-steps per second [1/s], contacts, kinetic energy [J], mean temperature [K] and heat content [J] of thermal runs, and the active, removed and inactive particles when any were removed or wait |
+/// | `progress(seconds = 2, out = stderr)` | at most every `seconds` of wall time: t [s], the share of the run done, step, the wall time elapsed and left (a run of `steps(n)` has no end time: t, step and elapsed only) |
+/// | `print(columns...)`, `print(FILE*, columns...)`, `print(path, columns...)` | one line of aligned text per call: `time [s]`, `step` and the columns (`io::column` or any column set of csv.hpp), with a header line first; `digits` (6) significant digits, `nan` for a missing value |
+///
+/// | frequency | calls each action |
+/// |---|---|
+/// | `every(interval, actions...)` | at the start of a run, every `interval` [s] of simulated time after it, and at the end |
+/// | `every_steps(n, actions...)` | at the start of a run, every n steps after it, and at the end |
+///
+/// Neither calls its actions twice at one step: not when a run starts where the previous run with
+/// the same object ended (no duplicate row at the junction), nor when the end falls on an output.
+///
+/// \code
+/// sim.run(1.0, io::summary(), io::progress(),
+///         io::every_steps(1000, io::print(io::lifecycle_columns(),
+///                                         io::particle_columns({7}, io::velocity))));
+/// \endcode
+
+#include <grain/core/error.hpp>
+#include <grain/io/csv.hpp>
 
 #include <boost/hana/for_each.hpp>
 #include <boost/hana/tuple.hpp>
 #include <boost/hana/type.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <locale>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace grain::io {
 
@@ -37,12 +66,42 @@ std::string describe_contact() {
   return out;
 }
 
+namespace detail {
+
+/// A wall-clock duration as text: "12.3 s", "4 min 05 s", "2 h 07 min".
+inline std::string duration_text(double seconds) {
+  char buf[64];
+  if (!(seconds >= 0) || !std::isfinite(seconds)) return "?";
+  if (seconds < 60.0) {
+    std::snprintf(buf, sizeof buf, "%.1f s", seconds);
+  } else if (seconds < 3600.0) {
+    const long s = std::lround(seconds);
+    std::snprintf(buf, sizeof buf, "%ld min %02ld s", s / 60, s % 60);
+  } else {
+    const long m = std::lround(seconds / 60.0);
+    std::snprintf(buf, sizeof buf, "%ld h %02ld min", m / 60, m % 60);
+  }
+  return buf;
+}
+
+template <class A, class Sim>
+void start_action(A& a, const Sim& sim) {
+  if constexpr (requires { a.start(sim); }) a.start(sim);
+}
+template <class A, class Sim>
+void finish_action(A& a, const Sim& sim) {
+  if constexpr (requires { a.finish(sim); }) a.finish(sim);
+}
+
+} // namespace detail
+
 /// Prints a summary when a run starts and when it ends.
 struct Summary {
   std::FILE* out = stdout;
   std::chrono::steady_clock::time_point started{};
   double wall0 = 0.0, ps0 = 0.0;
   long steps0 = 0;
+  std::size_t removed0 = 0;
 
   template <class Sim>
   void start(const Sim& sim) {
@@ -50,20 +109,36 @@ struct Summary {
     wall0 = sim.counters().wall_seconds;
     ps0 = sim.counters().particle_steps;
     steps0 = sim.counters().steps;
+    removed0 = sim.removed_ids().size();
     const auto [pp, pw] = sim.contact_counts();
+    std::string particles = std::to_string(sim.size()) + " particles";
+    if (sim.inactive_count() > 0 || removed0 > 0) {
+      particles += " (";
+      if (sim.inactive_count() > 0)
+        particles += std::to_string(sim.inactive_count()) + " more waiting for their creation time";
+      if (removed0 > 0)
+        particles += std::string(sim.inactive_count() > 0 ? ", " : "") + std::to_string(removed0) +
+                     " removed so far";
+      particles += ")";
+    }
+    // run() sets an end time; steps(n) does not
+    char span[160];
+    if (sim.end_time() > sim.time())
+      std::snprintf(span, sizeof span, "t = %.6g s -> %.6g s (%ld steps)", sim.time(),
+                    sim.end_time(),
+                    static_cast<long>(std::llround((sim.end_time() - sim.time()) / sim.time_step())));
+    else
+      std::snprintf(span, sizeof span, "t = %.6g s", sim.time());
     std::fprintf(out,
-                 "grain: %dD %s simulation, %zu particles, %zu walls, %zu materials\n"
+                 "grain: %dD %s simulation, %s, %zu walls, %zu materials\n"
                  "       contact: %s\n"
                  "       search: %s (skin %.4g m); integrator: %s\n"
-                 "       time step %.6g s (critical %.6g s); t = %.6g s -> %.6g s (%ld steps)\n"
+                 "       time step %.6g s (critical %.6g s); %s\n"
                  "       contacts: %zu particle-particle, %zu particle-wall\n",
-                 Sim::dimension, Sim::shape_type::name, sim.size(), sim.walls().size(),
+                 Sim::dimension, Sim::shape_type::name, particles.c_str(), sim.walls().size(),
                  sim.materials().size(), describe_contact<typename Sim::contact_type>().c_str(),
-                 Sim::search_type::name, sim.skin(),
-                 Sim::integrator_type::name, sim.time_step(), sim.critical_time_step(), sim.time(),
-                 sim.end_time(),
-                 static_cast<long>(std::llround((sim.end_time() - sim.time()) / sim.time_step())),
-                 pp, pw);
+                 Sim::search_type::name, sim.skin(), Sim::integrator_type::name, sim.time_step(),
+                 sim.critical_time_step(), span, pp, pw);
     if constexpr (Sim::thermal) {
       static constexpr const char* kinds[] = {"automatic", "mechanical", "thermal",
                                               "thermo-mechanical"};
@@ -91,6 +166,13 @@ struct Summary {
                  "particle-wall; kinetic energy %.6g J\n",
                  sim.time(), sim.counters().steps - steps0, wall, stepping, sim.counters().rebuilds,
                  stepping > 0 ? ps / stepping : 0.0, pp, pw, sim.kinetic_energy());
+    const std::size_t removed = sim.removed_ids().size();
+    if (removed > 0 || sim.inactive_count() > 0)
+      std::fprintf(out,
+                   "       particles: %zu active, %zu removed (%zu in this run), %zu inactive "
+                   "(waiting for their creation time)\n",
+                   sim.size(), removed, removed - std::min(removed, removed0),
+                   sim.inactive_count());
     if constexpr (Sim::thermal)
       std::fprintf(out, "       mean temperature %.6g K, heat content %.6g J\n",
                    sim.mean_temperature(), sim.thermal_energy());
@@ -99,17 +181,21 @@ struct Summary {
 };
 inline Summary summary(std::FILE* out = stdout) { return Summary{out}; }
 
-/// Prints "t = ... (x %), step ..., time left ..." at most every `seconds` of wall time.
+/// Prints "t = ... s (x %), step ..., elapsed ..., time left ..." at most every `seconds` of wall
+/// time, and at the end (unless just printed). A run of `steps(n)` has no end time: "t = ... s, step ...,
+/// elapsed ...".
 struct Progress {
   double seconds = 2.0;
   std::FILE* out = stderr;
   std::chrono::steady_clock::time_point started{}, last{};
-  double t0 = 0.0;
+  double t0 = 0.0, t1 = 0.0; ///< start and end of the run (t1 <= t0: no end time)
+  long printed = -1;         ///< step of the last line
 
   template <class Sim>
   void start(const Sim& sim) {
     started = last = std::chrono::steady_clock::now();
     t0 = sim.time();
+    t1 = sim.end_time(); // run() sets it before the start; steps(n) leaves it at t0 or before
   }
   template <class Sim>
   void operator()(const Sim& sim) {
@@ -120,18 +206,26 @@ struct Progress {
   }
   template <class Sim>
   void finish(const Sim& sim) {
-    print(sim, std::chrono::steady_clock::now());
+    if (printed != sim.step_count()) print(sim, std::chrono::steady_clock::now());
   }
 
 private:
   template <class Sim>
-  void print(const Sim& sim, std::chrono::steady_clock::time_point now) const {
+  void print(const Sim& sim, std::chrono::steady_clock::time_point now) {
+    printed = sim.step_count();
     const double elapsed = std::chrono::duration<double>(now - started).count();
-    const double span = sim.end_time() - t0;
-    const double frac = span > 0 ? (sim.time() - t0) / span : 1.0;
-    const double left = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
-    std::fprintf(out, "  t = %.6g s (%5.1f %%), step %ld, elapsed %.1f s, time left %.1f s\n",
-                 sim.time(), 100.0 * frac, sim.step_count(), elapsed, left);
+    const double span = t1 - t0;
+    if (span > 0) {
+      const double frac = std::clamp((sim.time() - t0) / span, 0.0, 1.0);
+      const double left = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
+      std::fprintf(out, "  t = %.6g s (%5.1f %%), step %ld, elapsed %s, time left %s\n",
+                   sim.time(), 100.0 * frac, sim.step_count(),
+                   detail::duration_text(elapsed).c_str(),
+                   frac > 0 ? detail::duration_text(left).c_str() : "?");
+    } else {
+      std::fprintf(out, "  t = %.6g s, step %ld, elapsed %s\n", sim.time(), sim.step_count(),
+                   detail::duration_text(elapsed).c_str());
+    }
     std::fflush(out);
   }
 };
@@ -145,46 +239,190 @@ struct Every {
   double interval;
   std::tuple<Actions...> actions;
   double next = 0.0;
-  double last_fired = -1.0;
+  long last_step = -1; ///< step of the last call (no second call at the same step)
 
   template <class Sim>
   void start(const Sim& sim) {
-    std::apply([&](auto&... a) { (start_one(a, sim), ...); }, actions);
+    std::apply([&](auto&... a) { (detail::start_action(a, sim), ...); }, actions);
     next = sim.time();
+    if (last_step == sim.step_count()) { // continues a run that ended with a call
+      advance(sim);
+      return;
+    }
     (*this)(sim);
   }
   template <class Sim>
   void operator()(const Sim& sim) {
     if (sim.time() + 1e-9 * sim.time_step() < next) return;
     fire(sim);
-    while (next <= sim.time() + 1e-9 * sim.time_step()) next += interval;
+    advance(sim);
   }
   template <class Sim>
   void finish(const Sim& sim) {
-    if (last_fired != sim.time()) fire(sim);
-    std::apply([&](auto&... a) { (finish_one(a, sim), ...); }, actions);
+    if (last_step != sim.step_count()) fire(sim);
+    std::apply([&](auto&... a) { (detail::finish_action(a, sim), ...); }, actions);
+  }
+
+private:
+  template <class Sim>
+  void advance(const Sim& sim) {
+    while (next <= sim.time() + 1e-9 * sim.time_step()) next += interval;
+  }
+  template <class Sim>
+  void fire(const Sim& sim) {
+    last_step = sim.step_count();
+    std::apply([&](auto&... a) { (a(sim), ...); }, actions);
+  }
+};
+
+/// every(dt, actions...): output actions at a fixed interval of simulated time [s] (and at the
+/// start and the end of each run).
+template <class... Actions>
+Every<std::decay_t<Actions>...> every(double interval, Actions&&... actions) {
+  grain::detail::require_positive("grain::io::every", "interval", interval);
+  return {interval, {std::forward<Actions>(actions)...}};
+}
+
+/// Calls each action at the start of a run, every `steps` steps after it and at the end.
+template <class... Actions>
+struct EverySteps {
+  long steps;
+  std::tuple<Actions...> actions;
+  long next = 0;
+  long last_step = -1; ///< step of the last call (no second call at the same step)
+
+  template <class Sim>
+  void start(const Sim& sim) {
+    std::apply([&](auto&... a) { (detail::start_action(a, sim), ...); }, actions);
+    if (last_step != sim.step_count()) fire(sim);
+    next = sim.step_count() + steps;
+  }
+  template <class Sim>
+  void operator()(const Sim& sim) {
+    if (sim.step_count() < next) return;
+    fire(sim);
+    next = sim.step_count() + steps;
+  }
+  template <class Sim>
+  void finish(const Sim& sim) {
+    if (last_step != sim.step_count()) fire(sim);
+    std::apply([&](auto&... a) { (detail::finish_action(a, sim), ...); }, actions);
   }
 
 private:
   template <class Sim>
   void fire(const Sim& sim) {
-    last_fired = sim.time();
+    last_step = sim.step_count();
     std::apply([&](auto&... a) { (a(sim), ...); }, actions);
-  }
-  template <class A, class Sim>
-  static void start_one(A& a, const Sim& sim) {
-    if constexpr (requires { a.start(sim); }) a.start(sim);
-  }
-  template <class A, class Sim>
-  static void finish_one(A& a, const Sim& sim) {
-    if constexpr (requires { a.finish(sim); }) a.finish(sim);
   }
 };
 
-/// every(dt, actions...): output actions at a fixed interval of simulated time [s].
+/// every_steps(n, actions...): output actions every n steps (and at the start and the end of
+/// each run); n >= 1.
 template <class... Actions>
-Every<std::decay_t<Actions>...> every(double interval, Actions&&... actions) {
-  return {interval, {std::forward<Actions>(actions)...}};
+EverySteps<std::decay_t<Actions>...> every_steps(long n, Actions&&... actions) {
+  if (n < 1)
+    throw InputError("grain::io::every_steps: n = " + std::to_string(n) +
+                     " is invalid; valid range: [1, inf) steps");
+  return {n, {std::forward<Actions>(actions)...}};
+}
+
+/// Aligned text lines: time, step and the given columns (io::column or column sets), a header
+/// line first; on a stream (stdout by default) or, if `path` is set, in a text file.
+template <class... Columns>
+struct Print {
+  std::FILE* out = stdout;
+  std::string path{}; ///< a text file to write instead of `out`, if not empty
+  std::tuple<Columns...> columns;
+  int digits = 6; ///< significant digits, [1, 17]
+  std::shared_ptr<std::FILE> file_{};
+  std::vector<std::size_t> widths_{};
+  std::vector<double> cells_{};
+  bool started_ = false;
+
+  template <class Sim>
+  void start(const Sim& sim) {
+    if (started_) return; // a later run goes on below the same header
+    grain::detail::require_in("grain::io::print", "digits", digits, 1, 17, "[1, 17]");
+    detail::start_all(columns, sim);
+    std::vector<std::string> names{"time [s]", "step"};
+    detail::names_of_all(columns, sim, names);
+    if (!path.empty()) {
+      const std::filesystem::path p(path);
+      if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+      std::FILE* f = std::fopen(path.c_str(), "w");
+      if (!f) throw std::runtime_error("grain::io::print: cannot open '" + path + "' for writing");
+      file_ = std::shared_ptr<std::FILE>(f, [](std::FILE* g) { std::fclose(g); });
+    }
+    const std::size_t numeric = static_cast<std::size_t>(digits) + 7; // -1.23457e-05
+    widths_.clear();
+    for (std::size_t k = 0; k < names.size(); ++k)
+      widths_.push_back(std::max(names[k].size(), k == 1 ? std::size_t{9} : numeric));
+    std::string line;
+    for (std::size_t k = 0; k < names.size(); ++k) append(line, names[k], k);
+    emit(line);
+    started_ = true;
+  }
+
+  template <class Sim>
+  void operator()(const Sim& sim) {
+    if (!started_) start(sim);
+    cells_.clear();
+    detail::values_of_all(columns, sim, cells_);
+    if (cells_.size() + 2 != widths_.size())
+      throw std::logic_error("grain::io::print: the columns gave " +
+                             std::to_string(cells_.size()) + " values for " +
+                             std::to_string(widths_.size() - 2) +
+                             " names; a column set must give one value per name");
+    std::string line;
+    append(line, number(sim.time()), 0);
+    append(line, std::to_string(sim.step_count()), 1);
+    for (std::size_t k = 0; k < cells_.size(); ++k) append(line, number(cells_[k]), k + 2);
+    emit(line);
+  }
+
+private:
+  std::string number(double v) const {
+    if (std::isnan(v)) return "nan";
+    std::ostringstream s;
+    s.imbue(std::locale::classic());
+    s.precision(digits);
+    s << v;
+    return s.str();
+  }
+  void append(std::string& line, const std::string& cell, std::size_t k) const {
+    if (k > 0) line += "  ";
+    if (cell.size() < widths_[k]) line.append(widths_[k] - cell.size(), ' ');
+    line += cell;
+  }
+  void emit(const std::string& line) const {
+    std::FILE* f = file_ ? file_.get() : out;
+    std::fputs(line.c_str(), f);
+    std::fputc('\n', f);
+    std::fflush(f);
+  }
+};
+
+/// print(columns...): aligned text lines on stdout (use with io::every or io::every_steps).
+template <class... Columns>
+  requires(detail::column_like<Columns> && ...)
+Print<Columns...> print(Columns... columns) {
+  return {stdout, {}, {std::move(columns)...}};
+}
+/// print(out, columns...): aligned text lines on a stream (stdout, stderr, a FILE*).
+template <class... Columns>
+  requires(detail::column_like<Columns> && ...)
+Print<Columns...> print(std::FILE* out, Columns... columns) {
+  return {out, {}, {std::move(columns)...}};
+}
+/// print(path, columns...): aligned text lines in a text file (made with its folders).
+template <class... Columns>
+  requires(detail::column_like<Columns> && ...)
+Print<Columns...> print(std::string path, Columns... columns) {
+  if (path.empty())
+    throw InputError("grain::io::print: path = \"\" is invalid; valid: a file name (or give a "
+                     "FILE* such as stdout)");
+  return {stdout, std::move(path), {std::move(columns)...}};
 }
 
 } // namespace grain::io

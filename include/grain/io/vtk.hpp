@@ -1,82 +1,348 @@
 #pragma once
 /// \file vtk.hpp
-/// Legacy VTK (ASCII) files for ParaView: one particle file and one wall file per output time.
+/// Legacy VTK files for ParaView: one particle file, one wall file and (optionally) one contact
+/// file per output time, in ASCII or binary, with a choice of particle fields and of a particle
+/// group.
 ///
-/// `vtk("out/bed")` writes out/bed_particles_000000.vtk, out/bed_walls_000000.vtk, ... with
-/// particle fields id, radius [m], velocity [m/s], omega [rad/s], force [N] (vectors always have
-/// three components; in 2D z = 0 and omega is (0, 0, w)). Infinite planes are drawn as squares of
-/// side `plane_size` [m] around their point; circles as polygons of `circle_segments` sides.
+/// \code
+/// sim.run(1.0, io::every(0.01, io::vtk("out/bed")));   // every field, every particle, ASCII
+/// sim.run(1.0, io::every(0.01, io::vtk("out/bed", {.fields = io::fields::velocity |
+///                                                            io::fields::temperature,
+///                                                  .group = "hot",
+///                                                  .format = io::VtkFormat::binary})));
+/// \endcode
+///
+/// `vtk("out/bed")` writes out/bed_particles_000000.vtk, out/bed_walls_000000.vtk, ... and the
+/// ParaView series files out/bed_particles.vtk.series, out/bed_walls.vtk.series. The points of a
+/// particle file are the particle centres [m]; its point fields are chosen from (default
+/// `fields::all`: every field the simulation has):
+///
+/// | field | VTK array | unit |
+/// |---|---|---|
+/// | `id` | SCALARS long (vtktypeint64 in binary files) | - |
+/// | `radius` | SCALARS double | m |
+/// | `velocity` | VECTORS double | m/s |
+/// | `omega` | VECTORS double (2D: (0, 0, w)) | rad/s |
+/// | `force` | VECTORS double, total force of the last step | N |
+/// | `torque` | VECTORS double (2D: (0, 0, T)), total torque of the last step | N m |
+/// | `mass` | SCALARS double (2D: of a disk of length `thickness`) | kg |
+/// | `orientation` | 3D: SCALARS double 4, the unit quaternion (w, x, y, z) that turns body axes into lab axes (ParaView's glyph orientation mode "Quaternion"); 2D: SCALARS double, the angle | -, rad |
+/// | `material` | SCALARS int, index into the material table | - |
+/// | `temperature` | SCALARS double (thermal simulations only) | K |
+/// | `heat_rate` | SCALARS double, net heat flow into the particle (thermal only) | W |
+/// | `heat_capacity` | SCALARS double, thermal inertia m c (thermal only) | J/K |
+///
+/// Vectors always have three components (z = 0 in 2D). Fields are written in the order of the
+/// table whatever the order asked. `fields::all` adapts to the simulation; naming a thermal
+/// field for a mechanical simulation, or an unknown group, is an `InputError` naming the valid
+/// ones, raised when the run starts (VtkWriter::start), before any file is written.
+/// `fields::named({"velocity", "temperature"})` builds a set from names (for input files).
+///
+/// With `group = "name"` a particle file holds only the group's active particles (in the order of
+/// `sim.group_indices(name)`) and a contact file only the contacts that touch one of them; wall
+/// files are unchanged. `io::vtk(prefix, plane_size, contacts)` is the writer of every field of
+/// every particle in ASCII.
+///
+/// Walls: lines in 2D, polygons in 3D, with cell data `wall` (the wall index) and, in thermal
+/// simulations, `conducts` and `temperature` [K]. Infinite planes are drawn as squares of side
+/// `plane_size` [m] around their point; circles as polygons of `circle_segments` sides. Contacts:
+/// see write_contacts_vtk.
+///
+/// Formats: `VtkFormat::ascii` (the default: readable, and what scripts/grain_plot.py reads) or
+/// `VtkFormat::binary` (legacy BINARY: the same keywords, numbers as big-endian IEEE 754 doubles
+/// and 32-/64-bit integers: 8 bytes a double instead of up to 24 characters, and some 20 times
+/// faster to write and to read). Both are legacy VTK "DataFile Version 3.0" polydata, read by
+/// ParaView, VisIt and VTK's vtkPolyDataReader.
 
+#include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/walls/walls.hpp>
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <locale>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <variant>
-#include <numbers>
-#include <vector>
-#include <cstdint>
+#include <type_traits>
 #include <utility>
+#include <variant>
+#include <vector>
 
 namespace grain::io {
 
+/// Encoding of the numbers of a legacy VTK file.
+enum class VtkFormat {
+  ascii, ///< text, 17 significant digits
+  binary ///< big-endian binary (legacy VTK BINARY)
+};
+
+/// A set of particle fields for the VTK particle files: `fields::velocity | fields::temperature`.
+struct Fields {
+  std::uint32_t bits = 0;
+  constexpr Fields operator|(Fields o) const { return {bits | o.bits}; }
+  /// True if every field of `f` is in the set.
+  constexpr bool has(Fields f) const { return (bits & f.bits) == f.bits; }
+  constexpr bool operator==(const Fields&) const = default;
+};
+
+namespace fields {
+inline constexpr Fields id{1u << 0}, radius{1u << 1}, velocity{1u << 2}, omega{1u << 3},
+    force{1u << 4}, torque{1u << 5}, mass{1u << 6}, orientation{1u << 7}, material{1u << 8},
+    temperature{1u << 9}, heat_rate{1u << 10}, heat_capacity{1u << 11};
+/// The fields of every simulation.
+inline constexpr Fields mechanical =
+    id | radius | velocity | omega | force | torque | mass | orientation | material;
+/// The fields of a thermal simulation only.
+inline constexpr Fields thermal = temperature | heat_rate | heat_capacity;
+/// Every field the simulation has (the thermal ones only in a thermal simulation): the default.
+inline constexpr Fields all{1u << 31};
+/// No field: the particle files hold the centres only.
+inline constexpr Fields none{};
+
+/// Names of the fields, in the order of their bits (and of the columns of a particle file).
+inline constexpr std::array<const char*, 12> names{
+    "id",   "radius",      "velocity", "omega",       "force",     "torque",
+    "mass", "orientation", "material", "temperature", "heat_rate", "heat_capacity"};
+
+/// The set of the named fields ("all" for fields::all); throws InputError naming the valid names
+/// for an unknown one.
+inline Fields named(const std::vector<std::string>& list) {
+  Fields f;
+  for (const auto& s : list) {
+    if (s == "all") {
+      f = f | all;
+      continue;
+    }
+    const auto it = std::find(names.begin(), names.end(), s);
+    if (it == names.end()) {
+      std::string valid;
+      for (const char* n : names) valid += std::string(n) + ", ";
+      throw InputError("grain::io::fields::named: field = '" + s +
+                       "' is invalid; valid values: " + valid + "all");
+    }
+    f = f | Fields{1u << (it - names.begin())};
+  }
+  return f;
+}
+} // namespace fields
+
 namespace detail {
 
-template <class V>
-inline void put3(std::ostream& o, const V& v) {
-  o << v[0] << ' ' << v[1] << ' ' << (v.size() > 2 ? v[2] : 0.0) << '\n';
+static_assert(sizeof(int) == 4, "grain::io::vtk: VTK's int is 32 bits");
+
+/// The fields to write for a simulation of type Sim: `f` with fields::all expanded; throws
+/// InputError for a field the simulation does not have.
+template <class Sim>
+Fields resolve_fields(Fields f, const char* who) {
+  constexpr Fields available =
+      Sim::thermal ? fields::mechanical | fields::thermal : fields::mechanical;
+  if (f.has(fields::all)) return available;
+  const std::uint32_t missing = f.bits & ~available.bits;
+  if (missing == 0) return f;
+  const int k = std::countr_zero(missing);
+  const std::string name = k < static_cast<int>(fields::names.size())
+                               ? fields::names[k]
+                               : "(bit " + std::to_string(k) + ")";
+  std::string valid;
+  for (std::size_t b = 0; b < fields::names.size(); ++b)
+    if (available.has(Fields{1u << b}))
+      valid += (valid.empty() ? "" : ", ") + std::string(fields::names[b]);
+  throw InputError(std::string(who) + ": field = '" + name + "' is invalid" +
+                   (Sim::thermal ? "" : " for a mechanical simulation") + "; valid values: " +
+                   valid + ", all" +
+                   (Sim::thermal ? "" : " (temperature, heat_rate and heat_capacity need a "
+                                        "thermal simulation)"));
 }
-inline void put_angular(std::ostream& o, double w) { o << "0 0 " << w << '\n'; }
-template <class V>
-inline void put_angular(std::ostream& o, const V& w) {
-  o << w[0] << ' ' << w[1] << ' ' << w[2] << '\n';
+
+/// One legacy VTK polydata file being written. Keyword lines are text in both formats; numbers
+/// are text (one tuple per line) or big-endian binary, each binary block ending with a newline.
+class LegacyVtkFile {
+public:
+  LegacyVtkFile(const std::string& path, VtkFormat format, const char* kind, double time)
+      : binary_(format == VtkFormat::binary),
+        out_(path, binary_ ? std::ios::out | std::ios::binary : std::ios::out) {
+    if (!out_) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
+    out_.imbue(std::locale::classic());
+    out_ << std::setprecision(17) << "# vtk DataFile Version 3.0\ngrain " << kind
+         << " t = " << time << '\n'
+         << (binary_ ? "BINARY" : "ASCII") << "\nDATASET POLYDATA\n";
+  }
+
+  /// Writes a keyword line.
+  void line(const std::string& text) { out_ << text << '\n'; }
+
+  /// POINTS section: n points, at(k) their coordinates (std::array<double, 3>).
+  template <class F>
+  void points(std::size_t n, F at) {
+    line("POINTS " + std::to_string(n) + " double");
+    for (std::size_t k = 0; k < n; ++k) tuple(at(k));
+    end_block();
+  }
+
+  /// A cell section ("VERTICES", "LINES", "POLYGONS"): cells.size() cells of point indices.
+  template <class Cell>
+  void cells(const char* keyword, const std::vector<Cell>& cells) {
+    std::size_t total = 0;
+    for (const auto& c : cells) total += c.size() + 1;
+    line(std::string(keyword) + ' ' + std::to_string(cells.size()) + ' ' + std::to_string(total));
+    for (const auto& c : cells) {
+      value(static_cast<std::int32_t>(c.size()));
+      for (const auto k : c) value(index32(k));
+      end_tuple();
+    }
+    end_block();
+  }
+  /// VERTICES section: one vertex per point 0 .. n-1.
+  void vertices(std::size_t n) {
+    line("VERTICES " + std::to_string(n) + ' ' + std::to_string(2 * n));
+    for (std::size_t k = 0; k < n; ++k) {
+      value(std::int32_t{1});
+      value(index32(k));
+      end_tuple();
+    }
+    end_block();
+  }
+
+  /// One data array of n tuples, at(k) the tuple k: a double, std::int64_t or int (SCALARS 1),
+  /// a std::array<double, 3> (VECTORS) or another std::array<double, C> (SCALARS C).
+  template <class F>
+  void field(const char* name, std::size_t n, F at) {
+    using T = std::decay_t<decltype(at(std::size_t{0}))>;
+    if constexpr (std::is_same_v<T, std::array<double, 3>>) {
+      line(std::string("VECTORS ") + name + " double");
+    } else {
+      const char* type = "double";
+      std::size_t comps = 1;
+      if constexpr (std::is_same_v<T, std::int64_t>) type = binary_ ? "vtktypeint64" : "long";
+      else if constexpr (std::is_same_v<T, int>) type = "int";
+      else if constexpr (!std::is_same_v<T, double>) comps = std::tuple_size_v<T>;
+      line(std::string("SCALARS ") + name + ' ' + type + ' ' + std::to_string(comps) +
+           "\nLOOKUP_TABLE default");
+    }
+    for (std::size_t k = 0; k < n; ++k) tuple(at(k));
+    end_block();
+  }
+
+  /// Flushes and closes the file; throws if anything could not be written.
+  void close(const std::string& path) {
+    out_.close();
+    if (!out_) throw std::runtime_error("grain::io::vtk: cannot write '" + path + "'");
+  }
+
+private:
+  bool binary_;
+  std::ofstream out_;
+  std::string buffer_{}; // binary block being built
+  bool first_ = true;    // no value yet on the current ASCII line
+
+  static std::int32_t index32(std::size_t k) {
+    if (k > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+      throw std::runtime_error("grain::io::vtk: point index " + std::to_string(k) +
+                               " does not fit the 32-bit cells of a legacy VTK file");
+    return static_cast<std::int32_t>(k);
+  }
+  template <class T>
+  void value(T x) {
+    if (binary_) {
+      unsigned char b[sizeof(T)];
+      std::memcpy(b, &x, sizeof(T));
+      if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + sizeof(T));
+      buffer_.append(reinterpret_cast<const char*>(b), sizeof(T));
+    } else {
+      if (!first_) out_ << ' ';
+      out_ << x;
+      first_ = false;
+    }
+  }
+  template <class T>
+  void tuple(const T& x) {
+    if constexpr (std::is_arithmetic_v<T>) value(x);
+    else
+      for (const double c : x) value(c);
+    end_tuple();
+  }
+  void end_tuple() {
+    if (!binary_) out_ << '\n';
+    first_ = true;
+  }
+  void end_block() {
+    if (!binary_) return;
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    out_ << '\n';
+    buffer_.clear();
+  }
+};
+
+/// Three components of a position or force (z = 0 in 2D), or of an angular quantity (2D: (0, 0,
+/// w)).
+inline std::array<double, 3> xyz(const Vec2& v) { return {v[0], v[1], 0.0}; }
+inline std::array<double, 3> xyz(const Vec3& v) { return {v[0], v[1], v[2]}; }
+inline std::array<double, 3> xyz(double w) { return {0.0, 0.0, w}; }
+/// Orientation: the angle [rad] in 2D, the quaternion (w, x, y, z) in 3D.
+inline double orientation_value(double angle) { return angle; }
+inline std::array<double, 4> orientation_value(const Eigen::Quaterniond& q) {
+  return {q.w(), q.x(), q.y(), q.z()};
 }
 
 } // namespace detail
 
-/// Writes the particles of a simulation as legacy VTK polydata.
+/// Writes the particles of a simulation as legacy VTK polydata: their centres as points with one
+/// vertex each, and the chosen point fields (see the table above). With a `group` name, only the
+/// group's active particles, in the order of `sim.group_indices(group)`; an unknown group or a
+/// field the simulation does not have is an InputError.
 template <class Sim>
-void write_particles_vtk(const Sim& sim, const std::string& path) {
-  std::ofstream o(path);
-  if (!o) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
-  o.imbue(std::locale::classic());
-  o << std::setprecision(17);
+void write_particles_vtk(const Sim& sim, const std::string& path,
+                         Fields fields = io::fields::all, VtkFormat format = VtkFormat::ascii,
+                         const std::string& group = "") {
+  const Fields f = detail::resolve_fields<Sim>(fields, "grain::io::write_particles_vtk");
   const auto& p = sim.particles();
-  const std::size_t n = p.size();
-  o << "# vtk DataFile Version 3.0\ngrain particles t = " << sim.time() << "\nASCII\n"
-    << "DATASET POLYDATA\nPOINTS " << n << " double\n";
-  for (std::size_t i = 0; i < n; ++i) detail::put3(o, p.position[i]);
-  o << "VERTICES " << n << ' ' << 2 * n << '\n';
-  for (std::size_t i = 0; i < n; ++i) o << "1 " << i << '\n';
-  o << "POINT_DATA " << n << "\nSCALARS id long 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < n; ++i) o << p.id[i] << '\n';
-  o << "SCALARS radius double 1\nLOOKUP_TABLE default\n";
-  for (std::size_t i = 0; i < n; ++i) o << p.radius[i] << '\n';
-  o << "VECTORS velocity double\n";
-  for (std::size_t i = 0; i < n; ++i) detail::put3(o, p.velocity[i]);
-  o << "VECTORS omega double\n";
-  for (std::size_t i = 0; i < n; ++i) detail::put_angular(o, p.omega[i]);
-  o << "VECTORS force double\n";
-  for (std::size_t i = 0; i < n; ++i) detail::put3(o, p.force[i]);
-  if constexpr (requires { p.temperature; p.heat_rate; }) {
-    o << "SCALARS temperature double 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < n; ++i) o << p.temperature[i] << '\n';
-    o << "SCALARS heat_rate double 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < n; ++i) o << p.heat_rate[i] << '\n';
+  const std::vector<std::uint32_t>* subset = group.empty() ? nullptr : &sim.group_indices(group);
+  const std::size_t n = subset ? subset->size() : p.size();
+  const auto at = [subset](std::size_t k) -> std::size_t { return subset ? (*subset)[k] : k; };
+  detail::LegacyVtkFile o(path, format, "particles", sim.time());
+  o.points(n, [&](std::size_t k) { return detail::xyz(p.position[at(k)]); });
+  o.vertices(n);
+  if (f == io::fields::none) return o.close(path);
+  o.line("POINT_DATA " + std::to_string(n));
+  using io::fields::names;
+  auto field = [&](Fields which, auto value) { // value(i) of particle i, if `which` is asked
+    if (!f.has(which)) return;
+    o.field(names[std::countr_zero(which.bits)], n, [&](std::size_t k) { return value(at(k)); });
+  };
+  field(io::fields::id, [&](std::size_t i) { return std::int64_t{p.id[i]}; });
+  field(io::fields::radius, [&](std::size_t i) { return p.radius[i]; });
+  field(io::fields::velocity, [&](std::size_t i) { return detail::xyz(p.velocity[i]); });
+  field(io::fields::omega, [&](std::size_t i) { return detail::xyz(p.omega[i]); });
+  field(io::fields::force, [&](std::size_t i) { return detail::xyz(p.force[i]); });
+  field(io::fields::torque, [&](std::size_t i) { return detail::xyz(p.torque[i]); });
+  field(io::fields::mass, [&](std::size_t i) { return p.mass[i]; });
+  field(io::fields::orientation,
+        [&](std::size_t i) { return detail::orientation_value(p.orientation[i]); });
+  field(io::fields::material, [&](std::size_t i) { return static_cast<int>(p.material[i]); });
+  if constexpr (Sim::thermal) {
+    field(io::fields::temperature, [&](std::size_t i) { return p.temperature[i]; });
+    field(io::fields::heat_rate, [&](std::size_t i) { return p.heat_rate[i]; });
+    field(io::fields::heat_capacity, [&](std::size_t i) { return p.heat_capacity[i]; });
   }
+  o.close(path);
 }
 
 /// Writes the walls of a simulation as legacy VTK polydata (lines in 2D, polygons in 3D), with
-/// the wall index as cell data.
+/// the wall index as cell data (and, in a thermal simulation, `conducts` and `temperature` [K];
+/// an insulated wall has conducts = 0 and temperature 0).
 template <class Sim>
 void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size = 1.0,
-                     int circle_segments = 64) {
+                     int circle_segments = 64, VtkFormat format = VtkFormat::ascii) {
   constexpr int D = Sim::dimension;
   using V = grain::Vec<D>;
   grain::detail::require(circle_segments >= 3, "grain::io::write_walls_vtk", "circle_segments",
@@ -121,30 +387,20 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
         },
         sim.walls()[w].geometry);
   }
-  std::ofstream o(path);
-  if (!o) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
-  o.imbue(std::locale::classic());
-  o << std::setprecision(17);
-  o << "# vtk DataFile Version 3.0\ngrain walls t = " << sim.time() << "\nASCII\n"
-    << "DATASET POLYDATA\nPOINTS " << pts.size() << " double\n";
-  for (const auto& x : pts) detail::put3(o, x);
-  std::size_t total = 0;
-  for (const auto& c : cells) total += c.size() + 1;
-  o << (D == 2 ? "LINES " : "POLYGONS ") << cells.size() << ' ' << total << '\n';
-  for (const auto& c : cells) {
-    o << c.size();
-    for (auto k : c) o << ' ' << k;
-    o << '\n';
-  }
-  o << "CELL_DATA " << cells.size() << "\nSCALARS wall int 1\nLOOKUP_TABLE default\n";
-  for (auto w : owner) o << w << '\n';
+  detail::LegacyVtkFile o(path, format, "walls", sim.time());
+  o.points(pts.size(), [&](std::size_t k) { return detail::xyz(pts[k]); });
+  o.cells(D == 2 ? "LINES" : "POLYGONS", cells);
+  const std::size_t m = cells.size();
+  o.line("CELL_DATA " + std::to_string(m));
+  o.field("wall", m, [&](std::size_t c) { return static_cast<int>(owner[c]); });
   if constexpr (Sim::thermal) {
-    // insulated walls: conducts = 0 and temperature 0
-    o << "SCALARS conducts int 1\nLOOKUP_TABLE default\n";
-    for (auto w : owner) o << (sim.walls()[w].conducts() ? 1 : 0) << '\n';
-    o << "SCALARS temperature double 1\nLOOKUP_TABLE default\n";
-    for (auto w : owner) o << (sim.walls()[w].conducts() ? sim.walls()[w].temperature : 0.0) << '\n';
+    const auto& walls = sim.walls();
+    o.field("conducts", m, [&](std::size_t c) { return walls[owner[c]].conducts() ? 1 : 0; });
+    o.field("temperature", m, [&](std::size_t c) {
+      return walls[owner[c]].conducts() ? walls[owner[c]].temperature : 0.0;
+    });
   }
+  o.close(path);
 }
 
 /// Writes the contact network of a simulation as legacy VTK polydata: one line per touching
@@ -153,9 +409,11 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
 /// per wall contact. Cell data: `wall` (-1 for a particle pair, else the wall index), `id_i`,
 /// `id_j` (-1 for a wall), `normal_force` [N] (repulsive positive), `tangential_force` [N]
 /// (vector on i), `overlap` [m], `contact_radius` [m] (as the area model gives it to conduction)
-/// and, in a thermal simulation, `heat_rate` [W] (into i).
+/// and, in a thermal simulation, `heat_rate` [W] (into i). With a `group` name, only the contacts
+/// that touch a particle of the group (the points are still every particle centre).
 template <class Sim>
-void write_contacts_vtk(const Sim& sim, const std::string& path) {
+void write_contacts_vtk(const Sim& sim, const std::string& path,
+                        VtkFormat format = VtkFormat::ascii, const std::string& group = "") {
   constexpr int D = Sim::dimension;
   struct Row {
     std::size_t i, j;
@@ -163,50 +421,50 @@ void write_contacts_vtk(const Sim& sim, const std::string& path) {
     grain::Vec<D> point, tangential;
     double normal, overlap, radius, heat;
   };
+  const auto& p = sim.particles();
+  const std::size_t n = p.size();
+  std::vector<char> member;
+  if (!group.empty()) {
+    member.assign(n, 0);
+    for (const auto i : sim.group_indices(group)) member[i] = 1;
+  }
   std::vector<Row> rows;
   const auto& contact = sim.params().contact;
-  const auto& p = sim.particles();
   sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
                            double q) {
+    if (!member.empty() && !member[i] && (wall || !member[j])) return;
     const auto pair = sim.contact_pair(i, j, wall);
     using C = typename Sim::contact_type;
     const double a = C::area_model::radius(g, pair, r.normal, contact.area);
     rows.push_back({i, j, wall, g.point, r.tangent.force, r.normal.force, g.overlap, a, q});
   });
-  std::ofstream o(path);
-  if (!o) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
-  o.imbue(std::locale::classic());
-  o << std::setprecision(17);
-  const std::size_t n = p.size();
-  std::size_t extra = 0;
-  for (const auto& c : rows) extra += c.wall;
-  o << "# vtk DataFile Version 3.0\ngrain contacts t = " << sim.time() << "\nASCII\n"
-    << "DATASET POLYDATA\nPOINTS " << n + extra << " double\n";
-  for (std::size_t i = 0; i < n; ++i) detail::put3(o, p.position[i]);
-  for (const auto& c : rows)
-    if (c.wall) detail::put3(o, c.point);
-  o << "LINES " << rows.size() << ' ' << 3 * rows.size() << '\n';
-  std::size_t next = n;
-  for (const auto& c : rows) o << "2 " << c.i << ' ' << (c.wall ? next++ : c.j) << '\n';
-  if (rows.empty()) return; // no cell data without cells
-  o << "CELL_DATA " << rows.size() << "\nSCALARS wall int 1\nLOOKUP_TABLE default\n";
-  for (const auto& c : rows) o << (c.wall ? static_cast<long>(c.j) : -1L) << '\n';
-  o << "SCALARS id_i long 1\nLOOKUP_TABLE default\n";
-  for (const auto& c : rows) o << p.id[c.i] << '\n';
-  o << "SCALARS id_j long 1\nLOOKUP_TABLE default\n";
-  for (const auto& c : rows) o << (c.wall ? std::int64_t{-1} : p.id[c.j]) << '\n';
-  o << "SCALARS normal_force double 1\nLOOKUP_TABLE default\n";
-  for (const auto& c : rows) o << c.normal << '\n';
-  o << "VECTORS tangential_force double\n";
-  for (const auto& c : rows) detail::put3(o, c.tangential);
-  o << "SCALARS overlap double 1\nLOOKUP_TABLE default\n";
-  for (const auto& c : rows) o << c.overlap << '\n';
-  o << "SCALARS contact_radius double 1\nLOOKUP_TABLE default\n";
-  for (const auto& c : rows) o << c.radius << '\n';
-  if constexpr (Sim::thermal) {
-    o << "SCALARS heat_rate double 1\nLOOKUP_TABLE default\n";
-    for (const auto& c : rows) o << c.heat << '\n';
+  std::vector<std::size_t> wall_points;
+  std::vector<std::array<std::size_t, 2>> lines;
+  lines.reserve(rows.size());
+  for (std::size_t c = 0; c < rows.size(); ++c) {
+    if (rows[c].wall) wall_points.push_back(c);
+    lines.push_back({rows[c].i, rows[c].wall ? n + wall_points.size() - 1 : rows[c].j});
   }
+  detail::LegacyVtkFile o(path, format, "contacts", sim.time());
+  o.points(n + wall_points.size(), [&](std::size_t k) {
+    return detail::xyz(k < n ? p.position[k] : rows[wall_points[k - n]].point);
+  });
+  o.cells("LINES", lines);
+  const std::size_t m = rows.size();
+  if (m == 0) return o.close(path); // no cell data without cells
+  o.line("CELL_DATA " + std::to_string(m));
+  o.field("wall", m,
+          [&](std::size_t c) { return rows[c].wall ? static_cast<int>(rows[c].j) : -1; });
+  o.field("id_i", m, [&](std::size_t c) { return std::int64_t{p.id[rows[c].i]}; });
+  o.field("id_j", m, [&](std::size_t c) {
+    return rows[c].wall ? std::int64_t{-1} : std::int64_t{p.id[rows[c].j]};
+  });
+  o.field("normal_force", m, [&](std::size_t c) { return rows[c].normal; });
+  o.field("tangential_force", m, [&](std::size_t c) { return detail::xyz(rows[c].tangential); });
+  o.field("overlap", m, [&](std::size_t c) { return rows[c].overlap; });
+  o.field("contact_radius", m, [&](std::size_t c) { return rows[c].radius; });
+  if constexpr (Sim::thermal) o.field("heat_rate", m, [&](std::size_t c) { return rows[c].heat; });
+  o.close(path);
 }
 
 namespace detail {
@@ -225,13 +483,30 @@ inline void write_series(const std::string& prefix, const char* kind,
 }
 } // namespace detail
 
-/// Output action: one particle file and one wall file per call, numbered 000000, 000001, ...
+/// Options of io::vtk (every one has a default: `io::vtk(prefix, {.format = ...})`).
+struct VtkOptions {
+  double plane_size = 1.0;           ///< side [m] of the square drawn for an infinite plane
+  bool contacts = false;             ///< also write the contact network
+  Fields fields = io::fields::all;   ///< particle fields
+  std::string group{};               ///< only this group's particles (and their contacts); "" = all
+  VtkFormat format = VtkFormat::ascii; ///< of every file
+};
+
+/// Output action: one particle file and one wall file (and contact file) per call, numbered
+/// 000000, 000001, ..., and their series files.
 struct VtkWriter {
   std::string prefix;
-  double plane_size = 1.0;
-  bool contacts = false; ///< also write the contact network
+  VtkOptions options{};
   int count = 0;
   std::vector<std::pair<std::string, double>> particle_files{}, wall_files{}, contact_files{};
+
+  /// Checks the fields and the group when the run starts, before any file is written (called
+  /// by Simulation::run and steps, and by io::every for the actions it wraps).
+  template <class Sim>
+  void start(const Sim& sim) const {
+    detail::resolve_fields<Sim>(options.fields, "grain::io::vtk");
+    if (!options.group.empty()) (void)sim.group(options.group);
+  }
 
   template <class Sim>
   void operator()(const Sim& sim) {
@@ -240,28 +515,35 @@ struct VtkWriter {
     const std::string stem = base.filename().string();
     std::ostringstream num;
     num << std::setw(6) << std::setfill('0') << count++;
-    write_particles_vtk(sim, prefix + "_particles_" + num.str() + ".vtk");
+    write_particles_vtk(sim, prefix + "_particles_" + num.str() + ".vtk", options.fields,
+                        options.format, options.group);
     particle_files.emplace_back(stem + "_particles_" + num.str() + ".vtk", sim.time());
     detail::write_series(prefix, "particles", particle_files);
     if (!sim.walls().empty()) {
-      write_walls_vtk(sim, prefix + "_walls_" + num.str() + ".vtk", plane_size);
+      write_walls_vtk(sim, prefix + "_walls_" + num.str() + ".vtk", options.plane_size, 64,
+                      options.format);
       wall_files.emplace_back(stem + "_walls_" + num.str() + ".vtk", sim.time());
       detail::write_series(prefix, "walls", wall_files);
     }
-    if (contacts) {
-      write_contacts_vtk(sim, prefix + "_contacts_" + num.str() + ".vtk");
+    if (options.contacts) {
+      write_contacts_vtk(sim, prefix + "_contacts_" + num.str() + ".vtk", options.format,
+                         options.group);
       contact_files.emplace_back(stem + "_contacts_" + num.str() + ".vtk", sim.time());
       detail::write_series(prefix, "contacts", contact_files);
     }
   }
 };
-/// vtk(prefix): an output action writing legacy VTK files `prefix_particles_NNNNNN.vtk` and
-/// `prefix_walls_NNNNNN.vtk`, and the ParaView series files `prefix_particles.vtk.series` and
+/// vtk(prefix, options): an output action writing legacy VTK files `prefix_particles_NNNNNN.vtk`
+/// and `prefix_walls_NNNNNN.vtk`, and the ParaView series files `prefix_particles.vtk.series` and
 /// `prefix_walls.vtk.series` (rewritten after every frame: open them to see the whole run as
 /// one time-dependent source). With `contacts = true` also `prefix_contacts_NNNNNN.vtk` and its
-/// series (see write_contacts_vtk).
+/// series (see write_contacts_vtk). See VtkOptions for the fields, group and format.
+inline VtkWriter vtk(std::string prefix, VtkOptions options) {
+  return VtkWriter{std::move(prefix), std::move(options)};
+}
+/// vtk(prefix, plane_size, contacts): every field of every particle, in ASCII.
 inline VtkWriter vtk(std::string prefix, double plane_size = 1.0, bool contacts = false) {
-  return VtkWriter{std::move(prefix), plane_size, contacts};
+  return vtk(std::move(prefix), VtkOptions{.plane_size = plane_size, .contacts = contacts});
 }
 
 } // namespace grain::io
