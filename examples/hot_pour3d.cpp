@@ -2,7 +2,7 @@
 /// Hot spheres poured onto a cold packed bed (3D, thermo-mechanical).
 ///
 /// 396 copper spheres at 300 K (radii 1.8-2.2 mm, from a fixed seed) lie as a bed in a 30 mm x
-/// 30 mm box; 200 spheres at 500 K start on a lattice above them and fall onto the bed, where
+/// 30 mm box; 216 spheres at 500 K start on a lattice above them and fall onto the bed, where
 /// they cool through their contacts while warming the bed. The box walls are insulated, so the
 /// heat content sum m c T stays constant (printed at the end with its relative change).
 ///
@@ -15,8 +15,12 @@
 ///   output_dir  folder for the VTK series (default out/hot_pour3d)
 ///
 /// Output: every 0.05 s the mean temperatures of the poured and of the bed spheres; VTK files of
-/// particles (with temperature and heat_rate) and walls every 0.05 s. Exits with status 1 if a
-/// sphere has left the box or the heat content changed by more than 1e-9 of itself.
+/// particles (with temperature and heat_rate) and walls every 0.05 s. At the end, with Python, VTK
+/// and matplotlib (Debian python3-vtk9, python3-matplotlib), scripts/grain_plot.py draws a 3D
+/// picture of the last frame coloured by temperature, hot_pour3d_final.png, ray-traced by POV-Ray
+/// (Debian povray) if it is installed, else a matplotlib scatter; without them the example only
+/// says so. Exits with status 1 if a sphere has left the box or the heat content changed by more
+/// than 1e-9 of itself.
 
 #include <grain/grain.hpp>
 
@@ -105,7 +109,17 @@ int main(int argc, char** argv) {
               th, tc);
   std::printf("  heat content sum m c T changed by %.2e of itself (insulated box)\n", drift);
   std::printf("  spheres outside the box: %zu\n", outside);
-  std::printf("  output: VTK series in %s\n",
-              std::filesystem::absolute(out_dir).lexically_normal().string().c_str());
+  // a 3D picture of the last frame, drawn by scripts/grain_plot.py (its location is known at
+  // build time): by POV-Ray, else by matplotlib; no Python, VTK or matplotlib is only reported
+  const std::string last = example::last_file(out_dir, "hot_pour3d_particles_");
+  const bool picture =
+      !last.empty() &&
+      example::plot("spheres '" + (out_dir / last).string() + "' -f temperature -o '" +
+                    (out_dir / "hot_pour3d_final.png").string() + "'");
+  std::printf("  output in %s: VTK series hot_pour3d_{particles,walls}.vtk.series%s\n",
+              std::filesystem::absolute(out_dir).lexically_normal().string().c_str(),
+              picture ? "; 3D picture of the last frame hot_pour3d_final.png"
+                      : " (no picture: scripts/grain_plot.py needs python3-vtk9 and "
+                        "python3-matplotlib)");
   return outside == 0 && drift < 1e-9 ? 0 : 1;
 }
