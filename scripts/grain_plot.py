@@ -107,12 +107,44 @@ def plot_history(args):
 
 
 # ------------------------------------------------------------------ legacy VTK (as io::vtk writes it)
+def read_vtk_binary(path):
+    """The same as read_vtk for a BINARY legacy file, read by VTK's own reader."""
+    centres, fields, _ = read_spheres(path)
+    try:
+        from vtkmodules.vtkCommonCore import vtkIdList
+        from vtkmodules.vtkIOLegacy import vtkPolyDataReader
+    except ImportError as e:
+        fail(f"binary VTK files need Python's vtk module (Debian python3-vtk9): {e}")
+    reader = vtkPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    data = reader.GetOutput()
+    cells = []
+    for array in (data.GetLines(), data.GetPolys()):
+        ids = vtkIdList()
+        array.InitTraversal()
+        while array.GetNextCell(ids):
+            cells.append([ids.GetId(k) for k in range(ids.GetNumberOfIds())])
+    out = {}
+    for name, v in fields.items():
+        out[name] = v[:, 0].tolist() if v.shape[1] == 1 else v.tolist()
+    return centres.tolist(), cells, out
+
+
 def read_vtk(path):
-    """Points, point or cell fields and line/polygon cells of an ASCII legacy polydata file."""
+    """Points, point or cell fields and line/polygon cells of a legacy polydata file (ASCII read
+    here, BINARY by VTK's reader)."""
+    try:
+        with open(path, "rb") as f:
+            head = [f.readline() for _ in range(3)]
+    except OSError as e:
+        fail(f"cannot read {path}: {e}")
+    if len(head) == 3 and head[2].strip() == b"BINARY":
+        return read_vtk_binary(path)
     try:
         with open(path, encoding="utf-8") as f:
             tokens = f.read().split("\n")
-    except OSError as e:
+    except (OSError, UnicodeDecodeError) as e:
         fail(f"cannot read {path}: {e}")
     lines = iter(tokens)
     points, cells, fields = [], [], {}

@@ -28,8 +28,9 @@ set(runs
     "history|${OUTPUT_DIR}/history.csv|-o|${OUTPUT_DIR}/history.png"
     "history|${OUTPUT_DIR}/history.csv|-y|mean_temperature|-x|kinetic_energy|-o|${OUTPUT_DIR}/xy.png"
     "disks|${INPUT_DIR}/disks_particles_000000.vtk|-f|velocity|-o|${OUTPUT_DIR}/disks.png"
+    "disks|${INPUT_DIR}/disks_binary_particles_000000.vtk|-f|velocity|-o|${OUTPUT_DIR}/disks_binary.png"
     "animate|${INPUT_DIR}/disks|-f|omega|-o|${OUTPUT_DIR}/disks.gif")
-set(outputs history.png xy.png disks.png disks.gif)
+set(outputs history.png xy.png disks.png disks_binary.png disks.gif)
 foreach(run IN LISTS runs)
   string(REPLACE "|" ";" args "${run}")
   execute_process(COMMAND "${PYTHON}" "${SCRIPT}" ${args} RESULT_VARIABLE rc)
