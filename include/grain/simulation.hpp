@@ -287,9 +287,12 @@ public:
     const std::int64_t id = s.id;
     const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
     // ids below next_id_ may be taken (an id at or above it is new)
-    if (id < next_id_ && has_particle(id))
+    if (id < next_id_ &&
+        (has_particle(id) ||
+         std::find(removed_ids_.begin(), removed_ids_.end(), id) != removed_ids_.end()))
       throw InputError(obj + ": id = " + std::to_string(id) +
-                       " is invalid; valid: an id no other particle has (or -1 = next free id)");
+                       " is invalid; valid: an id no other particle has or had (or -1 = next "
+                       "free id)");
     detail::require(all_finite(s.position), obj, "position", to_text(s.position), "finite coordinates");
     detail::require_positive(obj, "radius", s.radius);
     detail::require(all_finite(s.velocity), obj, "velocity", to_text(s.velocity), "finite components");
@@ -301,6 +304,8 @@ public:
     detail::require(!std::isnan(s.destruction_time) && s.destruction_time > s.creation_time, obj,
                     "destruction_time", s.destruction_time,
                     "(creation_time, inf] = (" + detail::to_text(s.creation_time) + ", inf] s");
+    detail::require(s.destruction_time > time_, obj, "destruction_time", s.destruction_time,
+                    "(current time, inf] = (" + detail::to_text(time_) + ", inf] s");
     if constexpr (thermal) {
       const double t = std::isnan(s.temperature) ? params_.initial_temperature : s.temperature;
       detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
@@ -392,11 +397,23 @@ public:
   /// Global damping that changes in time: force -c_t(t) v [c_t in N s/m] and torque -c_r(t) omega
   /// [c_r in N m s], replacing SimulationParams::damping_translational / damping_rotational.
   void set_damping(TimeFunction translational, TimeFunction rotational = {}) {
+    require_non_negative_function("Simulation::set_damping", "translational", translational);
+    require_non_negative_function("Simulation::set_damping", "rotational", rotational);
     damping_fn_ = std::make_pair(std::move(translational), std::move(rotational));
   }
   /// Mass-proportional damping per component (the third seed's DAMPING): force -m (d (.) v) and
   /// torque -I (d_w (.) omega), (.) the componentwise product; d, d_w in 1/s, time functions.
   void set_mass_damping(VectorTimeFunction<D> linear, AngularTimeFunction<D> angular = {}) {
+    for (int d = 0; d < D; ++d)
+      detail::require(linear.value(time_)[d] >= 0, "Simulation::set_mass_damping",
+                      "linear component", linear.value(time_)[d], "[0, inf) 1/s");
+    if constexpr (D == 2)
+      detail::require(angular.value(time_) >= 0, "Simulation::set_mass_damping", "angular",
+                      angular.value(time_), "[0, inf) 1/s");
+    else
+      for (int d = 0; d < 3; ++d)
+        detail::require(angular.value(time_)[d] >= 0, "Simulation::set_mass_damping",
+                        "angular component", angular.value(time_)[d], "[0, inf) 1/s");
     mass_damping_ = std::make_pair(std::move(linear), std::move(angular));
   }
 
@@ -410,8 +427,11 @@ public:
       if (w >= walls_.size())
         throw InputError(obj + ": wall = " + std::to_string(w) + " is invalid; valid range: [0, " +
                          std::to_string(walls_.size()) + ") (indices returned by add_wall)");
+    std::vector<std::int64_t> known = particles_.id;
+    for (const auto& sp : pending_) known.push_back(sp.id);
+    std::sort(known.begin(), known.end());
     for (const auto id : particle_ids)
-      if (!has_particle(id))
+      if (!std::binary_search(known.begin(), known.end(), id))
         throw InputError(obj + ": particle id = " + std::to_string(id) +
                          " is invalid; valid: ids of added particles");
     const auto g = cond_.add(Group{std::move(name), false, std::move(particle_ids),
@@ -513,6 +533,8 @@ public:
   void fix_temperature(const std::string& group, TimeFunction T) {
     static_assert(thermal, "grain::Simulation::fix_temperature needs a thermal simulation: give "
                            "the Interaction a conduction model");
+    require_non_negative_function("Simulation::fix_temperature (group '" + group + "')",
+                                  "temperature", T);
     const auto g = cond_.find(group);
     for (auto& w : group_walls(g)) {
       walls_[w].options.temperature = T;
@@ -660,7 +682,7 @@ public:
     double t = std::numeric_limits<double>::infinity();
     if constexpr (thermal) {
       for_each_size([&](double r, std::uint32_t k, double) {
-        const Material& m = materials_[k];
+        const Material m = bounding_material(k);
         if (m.conductivity > 0) t = std::min(t, r * r * m.density * m.heat_capacity / m.conductivity);
       });
     }
@@ -937,8 +959,11 @@ public:
       take(over_[4], m.rolling_friction);
       take(over_[5], m.conductivity);
       if (!std::isnan(over_[0][i]) || !std::isnan(over_[1][i])) m.shear = 0.0; // G from E, nu
-      if (!std::isnan(over_[0][i])) m.young_real = 0.0;
-      if (!std::isnan(over_[3][i])) m.friction_static = -1.0;
+      // a softened modulus keeps its ratio to the real one; a static friction below the new
+      // sliding friction is raised to it by the mixing rule
+      const Material& base = materials_[particles_.material[i]];
+      if (!std::isnan(over_[0][i]) && base.young_real > 0.0)
+        m.young_real = base.young_real * (m.young / base.young);
     }
     return m;
   }
@@ -1204,6 +1229,10 @@ private:
         m.shear = 0.0;
       } else if (v.vp.property == Property::density) {
         m.density = std::min(m.density, *std::min_element(y.begin(), y.end()));
+      } else if (v.vp.property == Property::conductivity) {
+        m.conductivity = std::max(m.conductivity, *std::max_element(y.begin(), y.end()));
+      } else if (v.vp.property == Property::heat_capacity) {
+        m.heat_capacity = std::min(m.heat_capacity, *std::min_element(y.begin(), y.end()));
       }
     }
     return m;
@@ -1212,6 +1241,15 @@ private:
     if (vprops_.empty()) return pair_properties(a, b);
     return PairProperties::mix(bounding_material(a), bounding_material(b),
                                overrides_[a * materials_.size() + b]);
+  }
+  /// A function that must not be negative: checked at the current time, and over every point of
+  /// a table (the values a run will meet for a table; a ramp or an oscillation is checked where
+  /// it is evaluated, see compute_forces).
+  void require_non_negative_function(const std::string& obj, const char* name,
+                                     const TimeFunction& f) const {
+    detail::require(f.value(time_) >= 0.0, obj, name, f.value(time_), "[0, inf)");
+    if (f.kind() == TimeFunction::Kind::table)
+      for (double y : f.table_ptr()->y()) detail::require(y >= 0.0, obj, name, y, "[0, inf) (table value)");
   }
   bool has_particle(std::int64_t id) const {
     if (is_active(id)) return true;
@@ -1420,7 +1458,7 @@ private:
     if (vprops_.empty()) return false;
     ensure_groups();
     auto& p = particles_;
-    bool radius = false, contact = false, any = false;
+    bool radius = false, contact = false, any = false, thermal_change = false;
     for (const auto& [vp, g] : vprops_) {
       if (!vp.active(time_) || (!all && step_ % vp.every != 0)) continue;
       any = true;
@@ -1460,6 +1498,7 @@ private:
           break;
         case Property::density: set_mass(y * vol); break;
         case Property::heat_capacity:
+          thermal_change = true;
           if constexpr (thermal) {
             p.heat_capacity[i] = p.mass[i] * y;
             p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
@@ -1470,7 +1509,11 @@ private:
         case Property::restitution: over_[2][i] = y; contact = true; break;
         case Property::friction: over_[3][i] = y; contact = true; break;
         case Property::rolling_friction: over_[4][i] = y; contact = true; break;
-        case Property::conductivity: over_[5][i] = y; contact = true; break;
+        case Property::conductivity:
+          over_[5][i] = y;
+          contact = true;
+          thermal_change = true;
+          break;
         }
       }
     }
@@ -1483,8 +1526,20 @@ private:
     } else if (contact && initialized_) {
       refresh_pair_cache();
     }
-    if constexpr (thermal)
+    if constexpr (thermal) {
       if (any && initialized_ && analysis() == Analysis::thermal) store_conductances();
+      if (thermal_change && initialized_ && heats()) {
+        // the conduction limit moves with the conductivities and heat capacities
+        const double limit = conduction_time_step();
+        if (dt_ > limit)
+          throw InputError("Simulation: time_step = " + detail::to_text(dt_) +
+                           " s is above the conduction limit " + detail::to_text(limit) +
+                           " s reached at t = " + detail::to_text(time_) +
+                           " s by a variable conductivity or heat capacity; valid range: (0, " +
+                           detail::to_text(limit) +
+                           "] s (give a smaller time_step or auto_time_step_factor)");
+      }
+    }
     return any;
   }
 
@@ -1539,6 +1594,9 @@ private:
     if (damping_fn_) {
       ct = damping_fn_->first(t);
       cr = damping_fn_->second(t);
+      if (ct < 0 || cr < 0)
+        throw InputError("Simulation::set_damping: damping = " + detail::to_text(std::min(ct, cr)) +
+                         " at t = " + detail::to_text(t) + " s is invalid; valid range: [0, inf)");
     }
     if (tracking_) {
       // power of the global damping (negative: it removes energy)
@@ -1854,7 +1912,7 @@ private:
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::before(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
-      if (spins) {
+      if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
         const A al = p.torque[i] * p.inv_inertia[i];
         IntegratorT::before(p.omega[i], al, dt, [&](const A& u, double h) { rotate(p.orientation[i], u, h); });
       } else {
@@ -1874,7 +1932,7 @@ private:
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::after(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
-      if (spins) {
+      if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
         const A al = p.torque[i] * p.inv_inertia[i];
         IntegratorT::after(p.omega[i], al, dt, [&](const A& u, double h) { rotate(p.orientation[i], u, h); });
       } else if (!IntegratorT::drift_before_forces) {
@@ -1912,12 +1970,17 @@ private:
   void lifecycle() {
     auto& p = particles_;
     const std::size_t n = p.size();
-    std::vector<char> gone(n, 0);
-    bool any = false;
     const double t = time_;
     const bool box = bounding_box_ && bounding_box_->active(t);
     bool sink = false;
     for (const auto& k : sinks_) sink = sink || k.active(t);
+    // nothing to do in most steps: no active region, nobody due
+    bool due = box || sink;
+    for (std::size_t k = 0; !due && k < doomed_.size(); ++k) due = doomed_[k].first <= t;
+    for (std::size_t k = 0; !due && k < pending_.size(); ++k) due = pending_[k].creation_time <= t;
+    if (!due) return;
+    std::vector<char> gone(n, 0);
+    bool any = false;
     if (box || sink) {
       for (std::size_t i = 0; i < n; ++i) {
         bool out = box && !bounding_box_->contains(p.position[i]);

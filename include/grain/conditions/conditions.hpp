@@ -259,6 +259,9 @@ public:
     for (const auto& c : temperatures) {
       if (!c.f.active(t)) continue;
       const double v = c.f.value(t);
+      if (!(v >= 0.0))
+        throw InputError("fixed temperature: T = " + to_text(v) + " K at t = " + to_text(t) +
+                         " s is invalid; valid range: [0, inf) K");
       for (const auto i : members[c.group])
         p.temperature[i] = v;
     }

@@ -27,7 +27,10 @@
 /// rules of particles/material.hpp) and cached until the next update or neighbour-list rebuild.
 ///
 /// The time step is checked before the run against the extreme table values (largest Young's
-/// modulus, smallest radius and density), so no update can make it unstable.
+/// modulus and conductivity, smallest radius, density and heat capacity; the Poisson ratio is
+/// taken as the material's). The conduction limit depends on the contacts: it is checked again
+/// after each update of a conductivity or heat capacity, and a given time step above it stops
+/// the run with an InputError. A radius change rebuilds the neighbour list at that update.
 
 #include <grain/core/error.hpp>
 #include <grain/core/table.hpp>
