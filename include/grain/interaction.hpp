@@ -17,13 +17,14 @@
 /// models without history it costs zero bytes, and it is trivially copyable (a checkpoint or a
 /// re-sort of the contact list is a plain copy).
 
+#include <algorithm>
+#include <cmath>
+#include <grain/core/config.hpp>
 #include <grain/models/area/none.hpp>
 #include <grain/models/concepts.hpp>
 #include <grain/models/conduction/none.hpp>
 #include <grain/models/rolling/none.hpp>
 #include <grain/models/tangent/none.hpp>
-#include <algorithm>
-#include <cmath>
 #include <type_traits>
 
 namespace grain {
@@ -156,8 +157,8 @@ struct Interaction {
 
   /// The per-contact pipeline (see the file comment for the order).
   template <int D>
-  static Result<D> evaluate(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static Result<D> evaluate(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const Params& p, History<D>& h, double dt) {
     Result<D> r;
     r.normal = normal_model::force(g, pair, p.normal, h.normal);
     r.tangent = tangent_model::force(g, pair, r.normal, p.tangent, h.tangent, dt);

@@ -34,6 +34,7 @@
 #include <grain/conditions/regions.hpp>
 #include <grain/conditions/variable_property.hpp>
 #include <grain/core/error.hpp>
+#include <grain/core/observer.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/integrate/integrators.hpp>
@@ -51,12 +52,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <numeric>
-#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -150,6 +152,11 @@ struct SimulationParams {
   /// damping (Simulation::dissipated_energy); off by default (it costs a few operations per
   /// contact).
   bool track_dissipation = false;
+  /// If true (default), particle orientations (3D: unit quaternions, 2D: angles) are integrated
+  /// from the angular velocities. No contact model reads them; they serve output (the VTK field
+  /// `orientation`) and checkpoints. False saves a rotation per particle and step (about 15 % of
+  /// a settling step of spheres); the orientations then stay where they were.
+  bool track_orientation = true;
   /// Settings of the fluid-cell size method (Voronoi conduction models only).
   typename CellSize::Params cells{};
 };
@@ -293,19 +300,23 @@ public:
       throw InputError(obj + ": id = " + std::to_string(id) +
                        " is invalid; valid: an id no other particle has or had (or -1 = next "
                        "free id)");
-    detail::require(all_finite(s.position), obj, "position", to_text(s.position), "finite coordinates");
+    // messages are formatted only for bad input (adding a particle must stay cheap)
+    if (!all_finite(s.position))
+      detail::require(false, obj, "position", to_text(s.position), "finite coordinates");
     detail::require_positive(obj, "radius", s.radius);
-    detail::require(all_finite(s.velocity), obj, "velocity", to_text(s.velocity), "finite components");
+    if (!all_finite(s.velocity))
+      detail::require(false, obj, "velocity", to_text(s.velocity), "finite components");
     detail::require(all_finite(s.omega), obj, "omega", "(non-finite)", "finite components");
     check_material(s.material, obj);
     detail::require(!std::isnan(s.creation_time) &&
                         s.creation_time < std::numeric_limits<double>::infinity(),
                     obj, "creation_time", s.creation_time, "[-inf, inf) s");
-    detail::require(!std::isnan(s.destruction_time) && s.destruction_time > s.creation_time, obj,
-                    "destruction_time", s.destruction_time,
-                    "(creation_time, inf] = (" + detail::to_text(s.creation_time) + ", inf] s");
-    detail::require(s.destruction_time > time_, obj, "destruction_time", s.destruction_time,
-                    "(current time, inf] = (" + detail::to_text(time_) + ", inf] s");
+    if (!(s.destruction_time > s.creation_time))
+      detail::require(false, obj, "destruction_time", s.destruction_time,
+                      "(creation_time, inf] = (" + detail::to_text(s.creation_time) + ", inf] s");
+    if (!(s.destruction_time > time_))
+      detail::require(false, obj, "destruction_time", s.destruction_time,
+                      "(current time, inf] = (" + detail::to_text(time_) + ", inf] s");
     if constexpr (thermal) {
       const double t = std::isnan(s.temperature) ? params_.initial_temperature : s.temperature;
       detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
@@ -472,7 +483,7 @@ public:
   /// particles now.
   void set_velocity(const std::string& group, const V& v, const A& w = zero<A>()) {
     const std::string obj = "Simulation::set_velocity (group '" + group + "')";
-    detail::require(all_finite(v), obj, "velocity", to_text(v), "finite components");
+    if (!all_finite(v)) detail::require(false, obj, "velocity", to_text(v), "finite components");
     detail::require(all_finite(w), obj, "omega", "(non-finite)", "finite components");
     for (const auto i : group_indices(group)) {
       particles_.velocity[i] = v;
@@ -866,12 +877,12 @@ public:
   template <class... Observers>
   void steps(long n, Observers&&... obs) {
     if (!initialized_) initialize();
-    (start_observer(obs), ...);
+    (detail::start_observer(obs, *this), ...);
     for (long k = 0; k < n; ++k) {
       step();
       (obs(*this), ...);
     }
-    (finish_observer(obs), ...);
+    (detail::finish_observer(obs, *this), ...);
   }
 
   /// Runs for `duration` seconds of simulated time (rounded up to whole steps).
@@ -1286,15 +1297,6 @@ private:
     return std::max(params_.reference_velocity, 2.0 * v);
   }
 
-  template <class O>
-  void start_observer(O& o) {
-    if constexpr (requires { o.start(*this); }) o.start(*this);
-  }
-  template <class O>
-  void finish_observer(O& o) {
-    if constexpr (requires { o.finish(*this); }) o.finish(*this);
-  }
-
   static History history_at(const std::vector<History>& h, std::size_t e) {
     if constexpr (Contact::template stateless<D>)
       return History{};
@@ -1309,8 +1311,8 @@ private:
     return touching_wall(i, w, g, particles_.velocity, particles_.omega);
   }
   /// Geometry of pair (i, j) if it touches, with the velocities `v`, `w`.
-  bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g, const std::vector<V>& v,
-                     const std::vector<A>& w) const {
+  GRAIN_INLINE bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g,
+                                  const std::vector<V>& v, const std::vector<A>& w) const {
     const auto& p = particles_;
     const V d = p.position[j] - p.position[i];
     const double d2 = d.squaredNorm();
@@ -1321,8 +1323,8 @@ private:
                      p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
     return true;
   }
-  bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g, const std::vector<V>& v,
-                     const std::vector<A>& w) const {
+  GRAIN_INLINE bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g,
+                                  const std::vector<V>& v, const std::vector<A>& w) const {
     const auto& p = particles_;
     const auto prox = walls_[k].proximity(p.position[i]);
     if (prox.distance >= p.radius[i]) return false;
@@ -1335,11 +1337,15 @@ private:
     ++steps_since_rebuild_;
     bool far = true;
     if (skin_ > 0.0) {
-      double d2 = 0.0;
-      const auto& x = particles_.position;
-      const long n = static_cast<long>(x.size());
+      double d2 = prefilled_ ? fused_d2_ : -1.0;
+      if (d2 < 0.0) {
+        d2 = 0.0;
+        const auto& x = particles_.position;
+        const long n = static_cast<long>(x.size());
 #pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) d2 = std::max(d2, (x[i] - snapshot_[i]).squaredNorm());
+        for (long i = 0; i < n; ++i)
+          d2 = std::max(d2, (x[i] - snapshot_[i]).squaredNorm());
+      }
       const double dp = std::sqrt(d2);
       double dw = 0.0;
       for (const auto& w : walls_) dw = std::max(dw, w.displacement_since_snapshot(reach_));
@@ -1361,6 +1367,10 @@ private:
         p.permute(perm);
         if (var_pairs_)
           for (auto& o : over_) permute_values(o, perm);
+        if (prefilled_) {
+          permute_values(vf_, perm);
+          if constexpr (Contact::has_torque) permute_values(wf_, perm);
+        }
       }
       search::detail::build_cells(p, walls_, reach, r_max_, list_);
     } else {
@@ -1420,8 +1430,9 @@ private:
     if (heat_on_) update_cells();
   }
 
-  static void permute_values(std::vector<double>& v, const std::vector<std::uint32_t>& perm) {
-    std::vector<double> out(perm.size());
+  template <class T>
+  static void permute_values(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
+    std::vector<T> out(perm.size());
     for (std::size_t k = 0; k < perm.size(); ++k) out[k] = v[perm[k]];
     v.swap(out);
   }
@@ -1560,8 +1571,10 @@ private:
       if constexpr (Contact::has_torque) wf_.resize(p.size());
     }
     const double half_dt = 0.5 * dt_;
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i) {
+    const bool prefilled = prefilled_;
+    prefilled_ = false;
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold && !prefilled)
+    for (long i = 0; i < (prefilled ? 0 : n); ++i) {
       if constexpr (predicts_velocity) {
         vf_[i] = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
         if constexpr (Contact::has_torque)
@@ -1588,16 +1601,9 @@ private:
         for (long i = c * chunk; i < end; ++i) contact_row(static_cast<std::size_t>(i));
       }
     }
-    if (gravity_fn_) gravity_now_ = (*gravity_fn_)(t);
-    const V g = gravity();
-    double ct = params_.damping_translational, cr = params_.damping_rotational;
-    if (damping_fn_) {
-      ct = damping_fn_->first(t);
-      cr = damping_fn_->second(t);
-      if (ct < 0 || cr < 0)
-        throw InputError("Simulation::set_damping: damping = " + detail::to_text(std::min(ct, cr)) +
-                         " at t = " + detail::to_text(t) + " s is invalid; valid range: [0, inf)");
-    }
+    const auto loads = global_loads(t);
+    const V g = std::get<0>(loads);
+    const double ct = std::get<1>(loads), cr = std::get<2>(loads);
     if (tracking_) {
       // power of the global damping (negative: it removes energy)
       const V dv = mass_damping_ ? V(mass_damping_->first(t)) : V(V::Zero());
@@ -1618,7 +1624,9 @@ private:
       for (double w : work_rows_) sum += w;
       work_in_ += sum * dt_;
     }
-    if (!mass_damping_) {
+    if (prefilled) {
+      // gravity and global damping are already in the force arrays (fused pass)
+    } else if (!mass_damping_) {
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
       for (long i = 0; i < n; ++i) {
         p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
@@ -1647,6 +1655,21 @@ private:
         if (heat_on_) cond_.add_heat(p, t, [&](double r) { return surface_area(r); });
     }
     if (cond_.any_control()) cond_.restrain_loads(p);
+  }
+
+  /// Gravity [m/s^2] and the global damping coefficients (translational [N s/m], rotational
+  /// [N m s]) at time t.
+  std::tuple<V, double, double> global_loads(double t) {
+    if (gravity_fn_) gravity_now_ = (*gravity_fn_)(t);
+    double ct = params_.damping_translational, cr = params_.damping_rotational;
+    if (damping_fn_) {
+      ct = damping_fn_->first(t);
+      cr = damping_fn_->second(t);
+      if (ct < 0 || cr < 0)
+        throw InputError("Simulation::set_damping: damping = " + detail::to_text(std::min(ct, cr)) +
+                         " at t = " + detail::to_text(t) + " s is invalid; valid range: [0, inf)");
+    }
+    return {gravity(), ct, cr};
   }
 
   /// Surface of a particle of radius r [m^2] (a 2D disk: its lateral surface, perimeter times
@@ -1902,22 +1925,38 @@ private:
   }
 
   // ---------------------------------------------------------------- integration
+  /// The integrator's first stage for particle i: velocity and position, angular velocity and
+  /// (if `orient`) orientation.
+  GRAIN_INLINE void before_one(std::size_t i, double dt, bool spins, bool orient) {
+    auto& p = particles_;
+    const V a = p.force[i] * p.inv_mass[i];
+    IntegratorT::before(p.velocity[i], a, dt,
+                        [&](const V& u, double h) { p.position[i] += u * h; });
+    if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
+      const A al = p.torque[i] * p.inv_inertia[i];
+      IntegratorT::before(p.omega[i], al, dt, [&](const A& u, double h) {
+        if (orient) rotate(p.orientation[i], u, h);
+      });
+    } else if (orient) {
+      rotate(p.orientation[i], p.omega[i], dt);
+    }
+  }
   void integrate_before(double dt) {
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
     const bool control = cond_.any_control();
+    if constexpr (predicts_velocity) {
+      if (!control && !mass_damping_) {
+        fused_before(dt);
+        return;
+      }
+    }
     if (control) cond_.save(p, time_, dt);
     const bool spins = spins_();
+    const bool orient = params_.track_orientation;
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
-      const V a = p.force[i] * p.inv_mass[i];
-      IntegratorT::before(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
-      if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
-        const A al = p.torque[i] * p.inv_inertia[i];
-        IntegratorT::before(p.omega[i], al, dt, [&](const A& u, double h) { rotate(p.orientation[i], u, h); });
-      } else {
-        rotate(p.orientation[i], p.omega[i], dt);
-      }
+      before_one(static_cast<std::size_t>(i), dt, spins, orient);
     }
     if (control) cond_.drift(p, time_, dt, true, rotator());
   }
@@ -1928,14 +1967,17 @@ private:
     if constexpr (!IntegratorT::drift_before_forces)
       if (control) cond_.save(p, time_, dt);
     const bool spins = spins_();
+    const bool orient = params_.track_orientation;
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
       IntegratorT::after(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
       if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
         const A al = p.torque[i] * p.inv_inertia[i];
-        IntegratorT::after(p.omega[i], al, dt, [&](const A& u, double h) { rotate(p.orientation[i], u, h); });
-      } else if (!IntegratorT::drift_before_forces) {
+        IntegratorT::after(p.omega[i], al, dt, [&](const A& u, double h) {
+          if (orient) rotate(p.orientation[i], u, h);
+        });
+      } else if (!IntegratorT::drift_before_forces && orient) {
         rotate(p.orientation[i], p.omega[i], dt);
       }
     }
@@ -1946,6 +1988,44 @@ private:
         cond_.drift(p, time_, dt, false, rotator());
     }
   }
+  /// Velocity Verlet without controlled particles or mass damping: one pass over the particles
+  /// ends step n and starts step n+1. Per particle: the half kick and the drift, the displacement
+  /// since the last neighbour-list build, the velocities the forces will see (v(n+1/2) +
+  /// a(n) dt/2), and the force arrays started with gravity and global damping (heat rates with
+  /// zero). `compute_forces` and `update_neighbors` then skip their own passes over the particles.
+  void fused_before(double dt) {
+    auto& p = particles_;
+    const long n = static_cast<long>(p.size());
+    const bool spins = spins_();
+    const bool orient = params_.track_orientation;
+    const double half_dt = 0.5 * dt;
+    vf_.resize(p.size());
+    if constexpr (Contact::has_torque) wf_.resize(p.size());
+    const auto loads = global_loads(time_ + dt);
+    const V g = std::get<0>(loads);
+    const double ct = std::get<1>(loads), cr = std::get<2>(loads);
+    const bool check = skin_ > 0.0 && snapshot_.size() == p.size();
+    double d2 = 0.0;
+#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
+    for (long i = 0; i < n; ++i) {
+      before_one(static_cast<std::size_t>(i), dt, spins, orient);
+      if (check) d2 = std::max(d2, (p.position[i] - snapshot_[i]).squaredNorm());
+      const V v = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
+      vf_[i] = v;
+      p.force[i] = p.mass[i] * g - ct * v;
+      if constexpr (Contact::has_torque) {
+        const A w = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
+        wf_[i] = w;
+        p.torque[i] = -cr * w;
+      } else {
+        p.torque[i] = zero<A>();
+      }
+      if constexpr (thermal) p.heat_rate[i] = 0.0;
+    }
+    fused_d2_ = check ? d2 : -1.0;
+    prefilled_ = true;
+  }
+
   /// True if angular velocities are integrated from torques: a contact model makes torques, or
   /// a prescribed torque acts.
   bool spins_() const { return Contact::has_torque || !cond_.torques.empty(); }
@@ -2075,6 +2155,11 @@ private:
   std::vector<V> snapshot_;
   std::vector<V> vf_; ///< velocities seen by the forces (velocity Verlet)
   std::vector<A> wf_; ///< angular velocities seen by the forces (velocity Verlet)
+  /// True between `fused_before` and `compute_forces`: vf_, wf_ and the force arrays (gravity,
+  /// global damping) are filled, and fused_d2_ holds the largest squared displacement since the
+  /// last list build (< 0: not measured).
+  bool prefilled_ = false;
+  double fused_d2_ = 0.0;
   double dt_ = 0.0, time_ = 0.0, time_offset_ = 0.0, end_time_ = 0.0;
   double r_max_ = 0.0, skin_ = 0.0, reach_ = 0.0;
   double cutoff_ = 0.0; ///< largest gap across which heat flows [m]

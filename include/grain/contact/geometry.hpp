@@ -25,10 +25,11 @@
 ///   sqrt(R_i^2 - d^2) for a flat wall. For small overlaps it is sqrt(2) times the Hertz radius
 ///   sqrt(r_eff delta); models that need the Hertz radius compute it from r_eff and overlap.
 
-#include <grain/core/vector.hpp>
-#include <grain/walls/walls.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/core/config.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/walls/walls.hpp>
 
 namespace grain {
 
@@ -63,10 +64,10 @@ inline double lens_radius(double r1, double r2, double d) {
 
 /// Geometry of two touching particles. `n` and `dist` come from the caller's distance test.
 template <int D>
-inline void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>& n, double dist,
-                          double ri, double rj,
-                          double mi, double mj, const Vec<D>& vi, const Vec<D>& vj,
-                          const Angular<D>& wi, const Angular<D>& wj) {
+GRAIN_INLINE void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>& n,
+                                double dist, double ri, double rj, double mi, double mj,
+                                const Vec<D>& vi, const Vec<D>& vj, const Angular<D>& wi,
+                                const Angular<D>& wj) {
   g.normal = n;
   g.distance = dist;
   g.overlap = ri + rj - dist;
@@ -89,9 +90,9 @@ inline void pair_geometry(ContactGeometry<D>& g, const Vec<D>& xi, const Vec<D>&
 
 /// Geometry of a particle (centre x, radius r, mass m) touching a wall.
 template <int D>
-inline void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall, const WallProximity<D>& w,
-                          const Vec<D>& x, double r, double m, const Vec<D>& v,
-                          const Angular<D>& omega) {
+GRAIN_INLINE void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall,
+                                const WallProximity<D>& w, const Vec<D>& x, double r, double m,
+                                const Vec<D>& v, const Angular<D>& omega) {
   g.normal = w.normal;
   g.distance = w.distance;
   g.overlap = r - w.distance;

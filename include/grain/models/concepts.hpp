@@ -11,9 +11,10 @@
 /// A model may define `template <int D> static void reverse(History<D>&)` to mirror its history
 /// when the two partners of a pair swap roles.
 
-#include <grain/contact/geometry.hpp>
-#include <grain/particles/material.hpp>
 #include <concepts>
+#include <grain/contact/geometry.hpp>
+#include <grain/core/config.hpp>
+#include <grain/particles/material.hpp>
 #include <limits>
 #include <utility>
 

@@ -43,8 +43,8 @@ struct LuMorrisLiBenyahia {
   static void validate(const Params&) {}
 
   template <int D>
-  static double radius(const ContactGeometry<D>& g, const PairProperties& pair,
-                       const NormalResult& n, const Params&) {
+  GRAIN_INLINE static double radius(const ContactGeometry<D>& g, const PairProperties& pair,
+                                    const NormalResult& n, const Params&) {
     const double elastic = n.force - n.damping * g.normal_velocity;
     return MorrisPannalaMaHrenya::hertz_radius(pair, g.r_eff, elastic);
   }

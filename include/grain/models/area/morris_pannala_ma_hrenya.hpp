@@ -42,8 +42,8 @@ struct MorrisPannalaMaHrenya {
   }
 
   template <int D>
-  static double radius(const ContactGeometry<D>& g, const PairProperties& pair,
-                       const NormalResult& n, const Params&) {
+  GRAIN_INLINE static double radius(const ContactGeometry<D>& g, const PairProperties& pair,
+                                    const NormalResult& n, const Params&) {
     return hertz_radius(pair, g.r_eff, n.force);
   }
 };

@@ -24,8 +24,8 @@ struct None {
   struct History {};
   static void validate(const Params&) {}
   template <int D>
-  static double radius(const ContactGeometry<D>& g, const PairProperties&, const NormalResult&,
-                       const Params&) {
+  GRAIN_INLINE static double radius(const ContactGeometry<D>& g, const PairProperties&,
+                                    const NormalResult&, const Params&) {
     return std::sqrt(g.r_eff * std::max(g.overlap, 0.0));
   }
 };
@@ -41,8 +41,8 @@ struct Geometric {
   struct History {};
   static void validate(const Params&) {}
   template <int D>
-  static double radius(const ContactGeometry<D>& g, const PairProperties&, const NormalResult&,
-                       const Params&) {
+  GRAIN_INLINE static double radius(const ContactGeometry<D>& g, const PairProperties&,
+                                    const NormalResult&, const Params&) {
     return lens_contact_radius(g);
   }
 };

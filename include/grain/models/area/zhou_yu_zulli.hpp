@@ -36,8 +36,8 @@ struct ZhouYuZulli {
   }
 
   template <int D>
-  static double radius(const ContactGeometry<D>& g, const PairProperties& pair, const NormalResult&,
-                       const Params&) {
+  GRAIN_INLINE static double radius(const ContactGeometry<D>& g, const PairProperties& pair,
+                                    const NormalResult&, const Params&) {
     return factor(pair) * std::sqrt(g.r_eff * std::max(g.overlap, 0.0));
   }
 };

@@ -25,8 +25,8 @@ struct BatchelorOBrien {
   static void validate(const Params&) {}
 
   template <int D>
-  static double conductance(const ContactGeometry<D>&, const PairProperties& pair,
-                            const HeatContext& c, const Params&, History<D>&) {
+  GRAIN_INLINE static double conductance(const ContactGeometry<D>&, const PairProperties& pair,
+                                         const HeatContext& c, const Params&, History<D>&) {
     return c.touching ? 4.0 * pair.conductivity_eff * c.contact_radius : 0.0;
   }
 };

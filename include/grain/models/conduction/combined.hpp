@@ -51,8 +51,8 @@ struct Combined {
     return c;
   }
   template <int D>
-  static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const HeatContext& c, const Params& p, History<D>& h) {
+  GRAIN_INLINE static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const HeatContext& c, const Params& p, History<D>& h) {
     return Direct::conductance(g, pair, c, p.direct, h.direct) +
            Indirect::conductance(g, pair, c, p.indirect, h.indirect);
   }

@@ -59,8 +59,8 @@ struct ThermalPipe {
   /// Series conductivity [W/(m K)] of the pipe: (R_i + R_j)/(R_i/k_i + R_j/k_j) for particles;
   /// for walls 2 k_i k_w/(k_i + k_w) over the doubled length (image), or k_i (isothermal).
   template <int D>
-  static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const HeatContext& c, const Params& p, History<D>&) {
+  GRAIN_INLINE static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const HeatContext& c, const Params& p, History<D>&) {
     const double ki = pair.conductivity_i, kj = pair.conductivity_j;
     if (!c.touching || !(c.distance > 0.0) || !(ki > 0.0)) return 0.0;
     const double a_pipe = area(c.contact_radius, c.length);

@@ -65,8 +65,8 @@ struct Hertz {
   }
 
   template <int D>
-  static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const Params& p, History<D>&) {
+  GRAIN_INLINE static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const Params& p, History<D>&) {
     const double kh = k_hertz(pair, g.r_eff);
     const double sd = std::sqrt(g.overlap);
     const double fe = kh * g.overlap * sd;

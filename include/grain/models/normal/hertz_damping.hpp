@@ -16,9 +16,10 @@
 /// const Params&, double k_hz, double r_eff, double m_eff, double sqrt_delta)` returning eta
 /// [N s/m] at the overlap delta; optionally `hertz_name`, the readable name of the whole model.
 
+#include <cmath>
+#include <grain/core/config.hpp>
 #include <grain/core/error.hpp>
 #include <grain/particles/material.hpp>
-#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -70,8 +71,8 @@ struct TsujiDamping {
     return p.map == TsujiMap::norouzi ? norouzi_alpha(pair.log_restitution)
                                       : exact_alpha(pair.log_restitution);
   }
-  static double coefficient(const PairProperties& pair, const Params& p, double k_hz, double,
-                            double m_eff, double sqrt_delta) {
+  GRAIN_INLINE static double coefficient(const PairProperties& pair, const Params& p, double k_hz,
+                                         double, double m_eff, double sqrt_delta) {
     return alpha(pair, p) * std::sqrt(m_eff * k_hz * sqrt_delta);
   }
 };
@@ -91,8 +92,8 @@ struct CriticalRatioDamping {
     detail::require(std::isfinite(p.ratio) && p.ratio >= 0.0, object, "damping.ratio", p.ratio,
                     "[0, inf) (the critical damping ratio must be given)");
   }
-  static double coefficient(const PairProperties& pair, const Params& p, double, double r_eff,
-                            double m_eff, double sqrt_delta) {
+  GRAIN_INLINE static double coefficient(const PairProperties& pair, const Params& p, double,
+                                         double r_eff, double m_eff, double sqrt_delta) {
     return p.ratio * std::sqrt(8.0 * pair.young_eff * m_eff * std::sqrt(r_eff) * sqrt_delta);
   }
 };
@@ -113,8 +114,8 @@ struct KuwabaraKonoDamping {
                     "damping.coefficient", p.coefficient,
                     "[0, inf) N s/m^1.5 (the Kuwabara-Kono coefficient must be given)");
   }
-  static double coefficient(const PairProperties&, const Params& p, double, double, double,
-                            double sqrt_delta) {
+  GRAIN_INLINE static double coefficient(const PairProperties&, const Params& p, double, double,
+                                         double, double sqrt_delta) {
     return p.coefficient * sqrt_delta;
   }
 };
@@ -132,8 +133,8 @@ struct LeeHerrmannDamping {
                     "damping.coefficient", p.coefficient,
                     "[0, inf) 1/s (the Lee-Herrmann coefficient must be given)");
   }
-  static double coefficient(const PairProperties&, const Params& p, double, double, double m_eff,
-                            double) {
+  GRAIN_INLINE static double coefficient(const PairProperties&, const Params& p, double, double,
+                                         double m_eff, double) {
     return p.coefficient * m_eff;
   }
 };

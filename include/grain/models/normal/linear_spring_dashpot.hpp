@@ -101,8 +101,8 @@ struct BasicLinearSpringDashpot {
   }
 
   template <int D>
-  static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const Params& p, History<D>& h) {
+  GRAIN_INLINE static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const Params& p, History<D>& h) {
     double k = p.stiffness;
     if (k <= 0.0) {
       const double v = detail::impact_velocity<ImpactVelocity>(

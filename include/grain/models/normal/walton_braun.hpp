@@ -144,8 +144,8 @@ struct BasicWaltonBraun {
   }
 
   template <int D>
-  static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const Params& p, History<D>& h) {
+  GRAIN_INLINE static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const Params& p, History<D>& h) {
     double kl = p.stiffness;
     if (kl <= 0.0) {
       const double v = detail::impact_velocity<ImpactVelocity>(

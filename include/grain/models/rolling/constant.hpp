@@ -35,8 +35,9 @@ struct Constant {
   }
 
   template <int D, class A>
-  static void torque(const ContactGeometry<D>& g, const PairProperties& pair, const NormalResult& n,
-                     const Params& p, History<D>&, double, A& ti, A& tj) {
+  GRAIN_INLINE static void torque(const ContactGeometry<D>& g, const PairProperties& pair,
+                                  const NormalResult& n, const Params& p, History<D>&, double,
+                                  A& ti, A& tj) {
     if (!(g.overlap > 0.0)) return;
     const A w = detail::rolling_omega(g);
     const double s = norm(w);

@@ -97,8 +97,9 @@ struct EPSD {
   }
 
   template <int D, class A>
-  static void torque(const ContactGeometry<D>& g, const PairProperties& pair, const NormalResult& n,
-                     const Params& p, History<D>& h, double dt, A& ti, A& tj) {
+  GRAIN_INLINE static void torque(const ContactGeometry<D>& g, const PairProperties& pair,
+                                  const NormalResult& n, const Params& p, History<D>& h, double dt,
+                                  A& ti, A& tj) {
     if (!(g.overlap > 0.0)) {
       h = History<D>{};
       return;

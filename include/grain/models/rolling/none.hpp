@@ -14,8 +14,9 @@ struct None {
   struct History {};
   static void validate(const Params&) {}
   template <int D, class A>
-  static void torque(const ContactGeometry<D>&, const PairProperties&, const NormalResult&,
-                     const Params&, History<D>&, double, A&, A&) {}
+  GRAIN_INLINE static void torque(const ContactGeometry<D>&, const PairProperties&,
+                                  const NormalResult&, const Params&, History<D>&, double, A&, A&) {
+  }
 };
 
 } // namespace grain::rolling

@@ -34,8 +34,9 @@ struct Viscous {
   }
 
   template <int D, class A>
-  static void torque(const ContactGeometry<D>& g, const PairProperties& pair, const NormalResult& n,
-                     const Params& p, History<D>&, double, A& ti, A& tj) {
+  GRAIN_INLINE static void torque(const ContactGeometry<D>& g, const PairProperties& pair,
+                                  const NormalResult& n, const Params& p, History<D>&, double,
+                                  A& ti, A& tj) {
     if (!(g.overlap > 0.0)) return;
     const double c =
         detail::coefficient(p.coefficient, pair) * g.r_eff * g.r_eff * std::max(n.force, 0.0);

@@ -49,8 +49,9 @@ struct Dashpot {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties&,
-                                const NormalResult& n, const Params& p, History<D>&, double) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties&,
+                                             const NormalResult& n, const Params& p, History<D>&,
+                                             double) {
     TangentResult<D> r;
     if (!(g.overlap > 0.0)) return r;
     r.force = -detail::dashpot_damping<D>(p.damping, p.damping_ratio, p.kappa, g, n) *

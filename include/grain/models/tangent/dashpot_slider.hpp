@@ -39,8 +39,9 @@ struct DashpotSlider {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double) {
     TangentResult<D> r;
     if (!(g.overlap > 0.0)) {
       h.sliding = false;

@@ -46,8 +46,9 @@ struct DiRenzoDiMaio {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double dt) {
     return detail::spring_step<D>(g, pair, n.force,
                                   detail::LinearSpring{stiffness<D>(g, pair), p.damping}, h.spring,
                                   &h.sliding, dt);

@@ -64,8 +64,9 @@ struct LangstonTuzunHeyes {
   };
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double dt) {
     Law law;
     law.fs = detail::static_friction(pair) * std::max(n.force, 0.0);
     law.dmax = detail::full_slip_elongation<D>(g, pair);

@@ -50,8 +50,9 @@ struct Mindlin {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double dt) {
     const double kt = stiffness<D>(g, pair);
     const double eta = p.damping >= 0.0 ? p.damping : detail::normal_ratio_damping(n, kt);
     return detail::spring_step<D>(g, pair, n.force, detail::LinearSpring{kt, eta}, h.spring,

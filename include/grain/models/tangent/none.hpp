@@ -14,8 +14,9 @@ struct None {
   struct History {};
   static void validate(const Params&) {}
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>&, const PairProperties&,
-                                const NormalResult&, const Params&, History<D>&, double) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>&, const PairProperties&,
+                                             const NormalResult&, const Params&, History<D>&,
+                                             double) {
     return {};
   }
 };

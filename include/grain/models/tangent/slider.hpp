@@ -32,8 +32,9 @@ struct Slider {
   static void validate(const Params&) {}
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params&, History<D>&, double) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params&, History<D>&, double) {
     TangentResult<D> r;
     if (!(g.overlap > 0.0)) return r;
     const double speed = g.tangential_velocity.norm();

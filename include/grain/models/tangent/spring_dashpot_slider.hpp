@@ -63,8 +63,9 @@ struct SpringDashpotSlider {
 
   /// k_t [N/m] and eta_t [N s/m] of a contact.
   template <int D>
-  static detail::LinearSpring spring(const ContactGeometry<D>& g, const PairProperties& pair,
-                                     const NormalResult& n, const Params& p) {
+  GRAIN_INLINE static detail::LinearSpring spring(const ContactGeometry<D>& g,
+                                                  const PairProperties& pair, const NormalResult& n,
+                                                  const Params& p) {
     const double kt = detail::linear_stiffness(p.stiffness, p.stiffness_ratio, pair, n);
     double eta;
     if (p.damping >= 0.0)
@@ -77,8 +78,9 @@ struct SpringDashpotSlider {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double dt) {
     return detail::spring_step<D>(g, pair, n.force, spring<D>(g, pair, n, p), h.spring, &h.sliding,
                                   dt);
   }

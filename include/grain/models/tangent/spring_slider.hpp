@@ -41,8 +41,9 @@ struct SpringSlider {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double dt) {
     const detail::LinearSpring law{
         detail::linear_stiffness(p.stiffness, p.stiffness_ratio, pair, n), 0.0};
     return detail::spring_step<D>(g, pair, n.force, law, h.spring, &h.sliding, dt);

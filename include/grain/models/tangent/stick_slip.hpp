@@ -86,7 +86,7 @@ inline void validate_restitution(const char* model, double e) {
 
 /// The stored elongation rotated into the tangent plane of normal n, keeping its length.
 template <int D>
-inline Vec<D> carried(const PlainVec<D>& stored, const Vec<D>& n) {
+GRAIN_INLINE Vec<D> carried(const PlainVec<D>& stored, const Vec<D>& n) {
   Vec<D> xi = load<D>(stored);
   const double old2 = xi.squaredNorm();
   if (old2 > 0.0) {
@@ -109,7 +109,7 @@ inline void negate(PlainVec<D>& s) {
 /// else mu_s). Only a compressive normal force carries friction: while a damped contact pulls
 /// (fn < 0 at the end of an unclamped contact) there is no tangential force.
 template <int D>
-inline bool coulomb(Vec<D>& f, const PairProperties& pair, double fn, bool was_sliding) {
+GRAIN_INLINE bool coulomb(Vec<D>& f, const PairProperties& pair, double fn, bool was_sliding) {
   const double mu = was_sliding ? pair.friction : static_friction(pair);
   const double limit = mu * std::max(fn, 0.0);
   const double f2 = f.squaredNorm();
@@ -159,9 +159,9 @@ struct SaturatingSpring {
 /// One step of a spring (-dashpot) (-slider) with spring law `law` (members force, elongation,
 /// energy, damping(x, |v_t|)); `sliding` = nullptr means no slider (no Coulomb limit).
 template <int D, class Law>
-inline TangentResult<D> spring_step(const ContactGeometry<D>& g, const PairProperties& pair,
-                                    double fn, const Law& law, PlainVec<D>& spring, bool* sliding,
-                                    double dt) {
+GRAIN_INLINE TangentResult<D> spring_step(const ContactGeometry<D>& g, const PairProperties& pair,
+                                          double fn, const Law& law, PlainVec<D>& spring,
+                                          bool* sliding, double dt) {
   TangentResult<D> r;
   if (!(g.overlap > 0.0)) {
     spring = PlainVec<D>{};
@@ -170,30 +170,39 @@ inline TangentResult<D> spring_step(const ContactGeometry<D>& g, const PairPrope
   }
   Vec<D> xi = carried<D>(spring, g.normal);
   xi += g.slip_velocity * dt;
-  const double x = xi.norm();
-  const double eta = law.damping(x, g.tangential_velocity.norm());
-  r.force = -eta * g.tangential_velocity;
-  if constexpr (std::is_same_v<Law, LinearSpring>)
-    r.force -= law.k * xi;
-  else if (x > 0.0)
-    r.force -= (law.force(x) / x) * xi;
+  constexpr bool linear = std::is_same_v<Law, LinearSpring>;
+  if constexpr (linear) {
+    // no lengths needed: F = -k xi - eta v_t, and a sliding spring holds xi = -F / k
+    r.force = -law.eta * g.tangential_velocity - law.k * xi;
+  } else {
+    const double x = xi.norm();
+    r.force = -law.damping(x, g.tangential_velocity.norm()) * g.tangential_velocity;
+    if (x > 0.0) r.force -= (law.force(x) / x) * xi;
+  }
   if (sliding) {
     r.sliding = coulomb<D>(r.force, pair, fn, *sliding);
     *sliding = r.sliding;
     if (r.sliding) {
-      const double f = r.force.norm();
-      xi = f > 0.0 ? Vec<D>(r.force * (-law.elongation(f) / f)) : Vec<D>(Vec<D>::Zero());
+      if constexpr (linear) {
+        xi = law.k > 0.0 ? Vec<D>(r.force * (-1.0 / law.k)) : Vec<D>(Vec<D>::Zero());
+      } else {
+        const double f = r.force.norm();
+        xi = f > 0.0 ? Vec<D>(r.force * (-law.elongation(f) / f)) : Vec<D>(Vec<D>::Zero());
+      }
     }
   }
   store<D>(spring, xi);
-  r.elastic_energy = law.energy(xi.norm());
+  if constexpr (linear)
+    r.elastic_energy = 0.5 * law.k * xi.squaredNorm();
+  else
+    r.elastic_energy = law.energy(xi.norm());
   return r;
 }
 
 /// Stiffness [N/m] of a linear spring: `given` if > 0, else `ratio` (0 = the Mindlin ratio
 /// (1 - nu)/(1 - nu/2), nu the mean Poisson ratio) times the normal model's tangent stiffness.
-inline double linear_stiffness(double given, double ratio, const PairProperties& pair,
-                               const NormalResult& n) {
+GRAIN_INLINE double linear_stiffness(double given, double ratio, const PairProperties& pair,
+                                     const NormalResult& n) {
   if (given > 0.0) return given;
   const double nu = pair.poisson_avg;
   const double q = ratio > 0.0 ? ratio : (1.0 - nu) / (1.0 - 0.5 * nu);
@@ -201,7 +210,7 @@ inline double linear_stiffness(double given, double ratio, const PairProperties&
 }
 
 /// Damping [N s/m] with the damping ratio of the normal model: eta_n sqrt(k_t / k_n).
-inline double normal_ratio_damping(const NormalResult& n, double kt) {
+GRAIN_INLINE double normal_ratio_damping(const NormalResult& n, double kt) {
   return n.stiffness > 0.0 ? n.damping * std::sqrt(kt / n.stiffness) : 0.0;
 }
 

@@ -51,8 +51,9 @@ struct Tsuji {
   }
 
   template <int D>
-  static TangentResult<D> force(const ContactGeometry<D>& g, const PairProperties& pair,
-                                const NormalResult& n, const Params& p, History<D>& h, double dt) {
+  GRAIN_INLINE static TangentResult<D> force(const ContactGeometry<D>& g,
+                                             const PairProperties& pair, const NormalResult& n,
+                                             const Params& p, History<D>& h, double dt) {
     const double eta = p.damping >= 0.0 ? p.damping : std::max(n.damping, 0.0);
     return detail::spring_step<D>(g, pair, n.force,
                                   detail::LinearSpring{stiffness<D>(g, pair), eta}, h.spring,
