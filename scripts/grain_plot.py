@@ -6,6 +6,13 @@ Usage:
       Graphs of the columns of a CSV time history (io::history, io::csv) against time, one panel
       per column (default: every column but time and step), or against column -x.
       Column names may be given without their unit: "mean_temperature" = "mean_temperature [K]".
+  grain_plot.py lines FILE.csv [FILE.csv ...] -y COLUMN [-y COLUMN ...] [-x COLUMN]
+                [--label NAME ...] [--title TEXT] [-o OUT.png]
+      One graph with a curve per file and column -y against time (or column -x), e.g. the
+      histories of several runs (io::compare writes one per variant). Curves are labelled
+      with --label (one per file, in order; default the file name) and the column when there
+      are several -y; solid, dashed and dotted in turn, so that curves that coincide stay
+      visible. 8x5 inches at 120 dpi (960x600 pixels).
   grain_plot.py disks FILE_particles_NNNNNN.vtk [-f FIELD] [-o OUT.png] [--range LO HI]
       A 2D picture of the disks of a legacy VTK particle file (io::vtk), coloured by a point
       field (default temperature if present, else the speed), with the walls of the matching
@@ -102,6 +109,38 @@ def plot_history(args):
     fig.suptitle(os.path.basename(args.file))
     fig.tight_layout()
     out = args.output or os.path.splitext(args.file)[0] + ".png"
+    fig.savefig(out, dpi=120)
+    print(out)
+
+
+def plot_lines(args):
+    if args.label and len(args.label) != len(args.files):
+        fail(f"{len(args.label)} labels for {len(args.files)} files; give one per file or none")
+    fig, ax = plt.subplots(figsize=(8, 5))
+    x_name = y_label = None
+    curves = 0
+    for k, path in enumerate(args.files):
+        header, columns = read_csv(path)
+        x = find_column(header, args.x) if args.x else header[0]
+        x_name = x_name or x
+        label = args.label[k] if args.label else os.path.splitext(os.path.basename(path))[0]
+        for y in args.y:
+            y_name = find_column(header, y)
+            y_label = y_label or y_name
+            # solid, dashed and dotted in turn, so that curves that coincide stay visible
+            style = ("-", "--", ":")[curves % 3]
+            curves += 1
+            ax.plot(columns[x], columns[y_name], lw=1.5, ls=style,
+                    label=label if len(args.y) == 1 else f"{label}: {y_name}")
+    ax.set_xlabel(x_name)
+    if len(args.y) == 1:
+        ax.set_ylabel(y_label)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize="small")
+    if args.title:
+        ax.set_title(args.title)
+    fig.tight_layout()
+    out = args.output or os.path.splitext(args.files[0])[0] + "_lines.png"
     fig.savefig(out, dpi=120)
     print(out)
 
@@ -547,6 +586,13 @@ def main():
     h.add_argument("-y", action="append", help="column to plot (repeatable)")
     h.add_argument("-x", help="column for the horizontal axis (default: time)")
     h.add_argument("-o", "--output")
+    n = sub.add_parser("lines", help="curves of several CSV files in one graph")
+    n.add_argument("files", nargs="+")
+    n.add_argument("-y", action="append", required=True, help="column to plot (repeatable)")
+    n.add_argument("-x", help="column for the horizontal axis (default: time)")
+    n.add_argument("--label", action="append", help="name of a file's curve (one per file)")
+    n.add_argument("--title")
+    n.add_argument("-o", "--output")
     d = sub.add_parser("disks", help="a picture of 2D disks coloured by a field")
     d.add_argument("file")
     d.add_argument("-f", "--field")
@@ -570,7 +616,7 @@ def main():
     s.add_argument("--cmap", default="plasma", help="matplotlib colormap (default plasma)")
     s.add_argument("--no-floor", action="store_true")
     args = parser.parse_args()
-    {"history": plot_history, "disks": plot_disks, "animate": plot_animation,
+    {"history": plot_history, "lines": plot_lines, "disks": plot_disks, "animate": plot_animation,
      "spheres": plot_spheres}[args.command](args)
     return 0
 

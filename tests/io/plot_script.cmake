@@ -1,13 +1,16 @@
-# Runs scripts/grain_plot.py on a CSV history, on the 2D VTK series of vtk_readback and on its 3D
-# sphere files, and checks that every picture is written (a PNG or GIF signature, not empty); the
-# 3D pictures (POV-Ray and the matplotlib fallback) must also have the requested size, be drawn
-# by the renderer asked for and not be blank.
+# Runs scripts/grain_plot.py on CSV histories (graphs of one history, and two histories in one
+# graph), on the 2D VTK series of vtk_readback and on its 3D sphere files, and checks that every
+# picture is written (a PNG or GIF signature, not empty); the graph of two histories and the 3D
+# pictures (POV-Ray and the matplotlib fallback) must also have the expected size and not be
+# blank, and the 3D pictures must be drawn by the renderer asked for.
 # cmake -DPYTHON=<python3> -DSCRIPT=<grain_plot.py> -DINPUT_DIR=<vtk_readback dir>
 #       -DOUTPUT_DIR=<scratch> [-DPOVRAY=<povray or empty>] -P plot_script.cmake
 file(REMOVE_RECURSE "${OUTPUT_DIR}")
 file(MAKE_DIRECTORY "${OUTPUT_DIR}")
 file(WRITE "${OUTPUT_DIR}/history.csv"
      "time [s],step,kinetic_energy [J],mean_temperature [K]\n0,0,1.0,300\n0.1,10,0.5,310\n0.2,20,0.25,315\n")
+file(WRITE "${OUTPUT_DIR}/history2.csv"
+     "time [s],step,mean_temperature [K]\n0,0,300\n0.05,5,302\n0.1,10,305\n0.2,20,309\n")
 if(NOT EXISTS "${INPUT_DIR}/disks_particles_000000.vtk")
   message(FATAL_ERROR "plot_script: no ${INPUT_DIR}/disks_particles_000000.vtk (vtk_readback "
                       "writes it)")
@@ -29,8 +32,9 @@ set(runs
     "history|${OUTPUT_DIR}/history.csv|-y|mean_temperature|-x|kinetic_energy|-o|${OUTPUT_DIR}/xy.png"
     "disks|${INPUT_DIR}/disks_particles_000000.vtk|-f|velocity|-o|${OUTPUT_DIR}/disks.png"
     "disks|${INPUT_DIR}/disks_binary_particles_000000.vtk|-f|velocity|-o|${OUTPUT_DIR}/disks_binary.png"
-    "animate|${INPUT_DIR}/disks|-f|omega|-o|${OUTPUT_DIR}/disks.gif")
-set(outputs history.png xy.png disks.png disks_binary.png disks.gif)
+    "animate|${INPUT_DIR}/disks|-f|omega|-o|${OUTPUT_DIR}/disks.gif"
+    "lines|${OUTPUT_DIR}/history.csv|${OUTPUT_DIR}/history2.csv|-y|mean_temperature|--label|O'Brien|--label|pipe|--title|two runs|-o|${OUTPUT_DIR}/lines.png")
+set(outputs history.png xy.png disks.png disks_binary.png disks.gif lines.png)
 foreach(run IN LISTS runs)
   string(REPLACE "|" ";" args "${run}")
   execute_process(COMMAND "${PYTHON}" "${SCRIPT}" ${args} RESULT_VARIABLE rc)
@@ -81,7 +85,8 @@ for path, width, height in zip(*[iter(sys.argv[1:])] * 3):
             bad += 1
 sys.exit(bad > 0)
 ]=])
-set(checked)
+# the graph of several histories (lines): 960x600 pixels and more than a blank frame
+set(checked "${OUTPUT_DIR}/lines.png" 960 600)
 set(k 0)
 foreach(picture IN LISTS pictures)
   string(REPLACE "|" ";" args "${picture}")
@@ -104,7 +109,7 @@ foreach(picture IN LISTS pictures)
 endforeach()
 execute_process(COMMAND "${PYTHON}" -c "${check}" ${checked} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "plot_script: a 3D picture has the wrong size or is blank")
+  message(FATAL_ERROR "plot_script: a graph or 3D picture has the wrong size or is blank")
 endif()
 
 # an empty group has no spheres to draw: an error (status 2), no picture
@@ -115,5 +120,14 @@ execute_process(COMMAND "${PYTHON}" "${SCRIPT}" spheres
 if(NOT rc EQUAL 2 OR EXISTS "${OUTPUT_DIR}/empty.png")
   message(FATAL_ERROR "plot_script: grain_plot.py spheres of an empty file: status ${rc}, "
                       "expected 2 and no picture")
+endif()
+# lines with one label for two files: an error (status 2), no graph
+execute_process(COMMAND "${PYTHON}" "${SCRIPT}" lines "${OUTPUT_DIR}/history.csv"
+                        "${OUTPUT_DIR}/history2.csv" -y mean_temperature --label one
+                        -o "${OUTPUT_DIR}/one_label.png"
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT rc EQUAL 2 OR EXISTS "${OUTPUT_DIR}/one_label.png")
+  message(FATAL_ERROR "plot_script: grain_plot.py lines with one label for two files: status "
+                      "${rc}, expected 2 and no graph")
 endif()
 message(STATUS "plot_script: ${outputs} written")
