@@ -1,8 +1,9 @@
 // Materials, shapes, input validation.
-#include <grain/grain.hpp>
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../errors.hpp"
 #include <cmath>
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -10,16 +11,8 @@
 using namespace grain;
 
 namespace {
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using grain::test::error_of;
+using grain::test::has;
 
 using Contact2 = Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider>;
 using Sim2 = Simulation<Disk, search::AllPairs, Contact2>;

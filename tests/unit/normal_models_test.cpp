@@ -1,16 +1,17 @@
 // The normal contact models one by one: formulas, history, the properties every option must
 // have (no force at rest, no energy created over a closed cycle, a wall is the limit of a large
 // particle, action equals reaction) and the errors raised for bad parameters.
+#include "../approx.hpp"
+#include "../errors.hpp"
+#include <algorithm>
+#include <cmath>
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/normal/hertz.hpp>
 #include <grain/models/normal/hertz_damping.hpp>
 #include <grain/models/normal/hertz_equivalent.hpp>
 #include <grain/models/normal/linear_spring_dashpot.hpp>
 #include <grain/models/normal/walton_braun.hpp>
-#include <doctest/doctest.h>
-#include "../approx.hpp"
-#include <algorithm>
-#include <cmath>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -211,15 +212,7 @@ double rel(double a, double b) {
   return s > 0 ? std::abs(a - b) / s : 0.0;
 }
 
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using grain::test::error_of;
 
 } // namespace
 

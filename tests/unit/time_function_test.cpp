@@ -1,13 +1,14 @@
 // Tables and time functions: closed-form values, end values, construction, input validation.
-#include <grain/core/table.hpp>
-#include <grain/core/time_function.hpp>
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../errors.hpp"
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <doctest/doctest.h>
 #include <filesystem>
 #include <fstream>
+#include <grain/core/table.hpp>
+#include <grain/core/time_function.hpp>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -19,16 +20,8 @@
 using namespace grain;
 
 namespace {
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using grain::test::error_of;
+using grain::test::has;
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr double qnan = std::numeric_limits<double>::quiet_NaN();

@@ -1,0 +1,960 @@
+#pragma once
+/// \file system.hpp
+/// A system of rigid bodies connected by translational springs, torsion springs and ball joints,
+/// under gravity and global damping, with rule-based spring failure, critical time-step
+/// estimates and an adaptive step: the body part of Parmec (its SPRING, TORSION_SPRING,
+/// UNSPRING, BALL_JOINT, GRAVITY, DAMPING, CRITICAL commands and the `adaptive` option of DEM)
+/// assembled on `RigidBodies` (rigid_body.hpp).
+///
+/// Units (SI): m, s, kg, N, N m, rad, rad/s.
+///
+/// ## Attachments
+/// Bodies are addressed by the index `add_body` returns; `world` (-1) stands for the fixed
+/// world. Attachment points and directions are given in world coordinates when an object is
+/// created and stored in each body's local frame (`to_local`), so they move with the body; a
+/// point on `world` stays where it was given. For the point-to-plane geometry the plane normal is
+/// carried by body 2 and turns with it.
+///
+/// ## Step
+/// One step of length h from t to t + h (velocity Verlet with the rotation splitting of
+/// rigid_body.hpp; F(t) are the forces of the configuration at t):
+///
+///     1. kick:   v += h/2 F(t)/m,  omega += h/2 J_world^-1 T(t)
+///     2. joints: impulses that give every joint point the relative velocity -C/h (C the joint's
+///                gap p1 - p2 at t), so that the drift closes the gap
+///     3. drift:  x += h v, free rotation over h (stages 2 and 3 repeated with further impulses
+///                until the gaps after the drift are closed, see below);  t += h
+///     4. forces at t + h: gravity m g(t), global damping, springs, torsion springs
+///     5. kick:   v += h/2 F(t+h)/m,  omega += h/2 J_world^-1 T(t+h)
+///     6. joints: impulses that set every joint point's relative velocity to zero
+///     7. unspring rules (one `Unspring::update` each, on the springs' results of stage 4)
+///
+/// The forces of stage 4 see the positions at t + h and the velocities at t + h/2 (the usual
+/// velocity Verlet lag of a dashpot: it shortens the period of a damped oscillator by the
+/// relative xi omega h / 2, and a global damping d decays a velocity as (1 - d h) a step).
+///
+/// ## Ball joints
+/// A ball joint keeps point p1 of body 1 and point p2 of body 2 (or a fixed point) coincident:
+/// C = p1 - p2 = 0, three rows per joint. With the generalized velocities (v_i, omega_i) of the
+/// bodies, the relative velocity of the joint points is u = J V with the blocks
+/// J_(j, body1) = [1, -[r1]x], J_(j, body2) = -[1, -[r2]x] (r the arms from the centres,
+/// [r]x a = r x a). Impulses lambda (on body 1 at p1, -lambda on body 2 at p2) change the
+/// velocities by M^-1 J^T lambda, M^-1 = diag(1/m 1, J_world^-1); the impulses that give the
+/// target relative velocities u_t solve
+///
+///     (J M^-1 J^T) lambda = u_t - J V*,
+///
+/// a sparse symmetric positive (semi-)definite system whose 3x3 blocks are the points'
+/// inverse-mass matrices K = (1/m) 1 + [r]x^T J^-1 [r]x of eqm.hpp on the diagonal and
+/// s_j s_k ((1/m) 1 - [r_j]x J^-1 [r_k]x) for two joints j, k on one body (s = +1 for body 1,
+/// -1 for body 2). It is assembled for all joints and factorised with Eigen's SimplicialLDLT
+/// twice a step, at the configurations of t (stage 2) and t + h (stage 6). The two stages are
+/// the two halves of the RATTLE scheme (Andersen, 1983):
+/// - stage 2 solves for u_t = -C/h: with a linear drift this would close the gap exactly, but the
+///   rotation over the step is not linear, which leaves a gap of order h^2 |omega|^2 |r|; the
+///   drift is then made again from the configuration at t after a further impulse with
+///   u_t = J V - C(t+h)/h (the same matrix, i.e. the joint directions at t, as in SHAKE), until
+///   the largest gap is below `joint_tolerance` (1e-12) times the largest joint arm, or stops
+///   decreasing, or after `joint_iterations` (10) repetitions. Each repetition reduces the gap by
+///   a factor of order h |omega|; two or three suffice;
+/// - stage 6 solves for u_t = 0: the relative velocity at the joint points is zero at the end
+///   of every step (as the Parmec user manual describes its ball joint).
+/// So the joint length does not drift (a pendulum keeps it to 1e-12 over 100 periods) and the
+/// energy of an undamped pendulum fluctuates at O(h^2) without drift. Initial velocities should
+/// satisfy the joints (zero relative velocity at the joint points); otherwise the first step
+/// removes the relative velocity by an inelastic impulse. A tiny diagonal regularisation (1e-12
+/// of the largest diagonal entry) lets redundant joint sets be solved (two ball joints on one
+/// axis make a hinge); the reactions of a redundant set are split by the regularised solution.
+/// The joint reaction reported is the force on body 1, (lambda_2 + lambda_6) / h with lambda_2
+/// all the impulses of stages 2-3: the mean joint force over the step (exactly m g for a body
+/// hanging at rest). Joints are constraints, not springs: they do not enter the critical step,
+/// and their solve does not restrict the step.
+///
+/// ## Critical steps
+/// Estimates from the springs' tangent stiffness and damping at their last evaluation:
+/// - a translational spring: omega = sqrt(k / m_eq), k = `SpringResult::stiffness`, m_eq the
+///   relative equivalent mass of its two points along its direction (eqm.hpp); xi the damping
+///   ratio, or c / (2 sqrt(k m_eq)) with c the slope of the dashpot table at the current stroke
+///   rate; with friction and kskn > 0 also the tangential mode sqrt(kskn k / m_min), m_min the
+///   smallest equivalent mass over all directions; h = critical_step(omega, xi) (eqm.hpp) of the
+///   limiting mode;
+/// - a torsion spring: per angle omega = sqrt(k_a / J_a), k_a the slope of its torque table at
+///   the current angle (a cone: of the first coupled law at the radial angle), J_a the relative
+///   effective inertia about the axis, 1 / (n^T (J1^-1 + J2^-1) n); the limiting angle;
+/// - a body: omega = sqrt(sum of omega^2 over the springs and torsion-spring angles acting on
+///   it), xi = the largest of their damping ratios. For point masses on springs omega_b^2 is the
+///   column sum of M^-1 K at the body, so the largest omega_b bounds the largest frequency
+///   (Gershgorin); it is exact for springs in parallel to fixed points and for two equal masses
+///   on one spring, and conservative when translational and rotational springs share a body;
+/// - the global estimate is the minimum over springs, torsion springs and bodies.
+/// A spring that is off (inactive, undone, being unloaded by a rule, or with zero tangent
+/// stiffness: outside its table, or an open contact element) gives no limit. With
+/// `set_adaptive(factor)` each step of `run` is min(h, factor x the global estimate), h the
+/// step given to `run`; the estimate is that of the previous step's state, so a spring that
+/// switches on (a contact element closing) limits the step from the next step on.
+///
+/// ## References
+/// - H. C. Andersen, Rattle: a "velocity" version of the Shake algorithm for molecular dynamics
+///   calculations, J. Comput. Phys. 52 (1983) 24-34.
+/// - J.-P. Ryckaert, G. Ciccotti, H. J. C. Berendsen, Numerical integration of the cartesian
+///   equations of motion of a system with constraints: molecular dynamics of n-alkanes,
+///   J. Comput. Phys. 23 (1977) 327-341 (SHAKE).
+/// - T. Belytschko, W. K. Liu, B. Moran, Nonlinear Finite Elements for Continua and Structures,
+///   Wiley 2000, ch. 6 (critical step, Gershgorin bound).
+
+#include <grain/bodies/eqm.hpp>
+#include <grain/bodies/rigid_body.hpp>
+#include <grain/bodies/spring.hpp>
+#include <grain/bodies/torsion_spring.hpp>
+#include <grain/bodies/unspring.hpp>
+#include <grain/core/error.hpp>
+#include <grain/core/observer.hpp>
+#include <grain/core/time_function.hpp>
+#include <grain/core/vector.hpp>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace grain::bodies {
+
+/// The fixed world as a body index: a point on it does not move.
+inline constexpr long world = -1;
+
+/// Where a translational spring is attached.
+struct SpringLink {
+  long body1 = 0;               ///< body of point 1
+  long body2 = world;           ///< body of point 2 (or of the plane), or `world`
+  Vec3 local1 = Vec3::Zero();   ///< point 1 in body 1's local frame [m]
+  Vec3 local2 = Vec3::Zero();   ///< point 2 in body 2's local frame (world: world point) [m]
+  Vec3 normal2 = Vec3::UnitZ(); ///< plane normal in body 2's reference frame (world: world)
+};
+
+/// Where a torsion spring is attached.
+struct TorsionLink {
+  long body1 = 0;
+  long body2 = world;
+  TorsionFrames frames{};
+};
+
+/// A ball joint: point local1 of body 1 coincides with point local2 of body 2 (or a fixed point).
+struct BallJoint {
+  long body1 = 0;
+  long body2 = world;
+  Vec3 local1 = Vec3::Zero(); ///< in body 1's local frame [m]
+  Vec3 local2 = Vec3::Zero(); ///< in body 2's local frame (world: the fixed point) [m]
+};
+
+/// What the joint solve gave in the last step.
+struct JointResult {
+  Vec3 point = Vec3::Zero();    ///< joint point on body 1 (world) [m]
+  Vec3 reaction = Vec3::Zero(); ///< mean joint force on body 1 over the step [N]
+  double gap = 0.0;             ///< abs(p1 - p2) [m]
+};
+
+/// One critical-step estimate, as a record of Parmec's CRITICAL list.
+struct CriticalStep {
+  double step = std::numeric_limits<double>::infinity(); ///< h [s]
+  std::size_t index = 0;                                 ///< spring, torsion spring or body index
+  double omega = 0.0;                                    ///< circular frequency [rad/s]
+  double damping_ratio = 0.0;                            ///< xi [-]
+};
+
+/// The n lowest per-spring and per-body estimates, each in ascending order of the step.
+struct CriticalSteps {
+  std::vector<CriticalStep> springs;
+  std::vector<CriticalStep> bodies;
+};
+
+namespace detail {
+
+/// The unit direction of a spring for the positions p1, p2 and plane normal n (zero if
+/// undefined); the same as `evaluate` of spring.hpp computes.
+inline Vec3 spring_direction(const SpringParams& p, const SpringKinematics& k) {
+  const Vec3 d = k.p2 - k.p1;
+  switch (p.geometry) {
+  case SpringGeometry::point_to_point: {
+    const double n = d.norm();
+    return n > 0.0 ? Vec3(d / n) : Vec3(Vec3::Zero());
+  }
+  case SpringGeometry::constant_direction:
+    return p.direction.normalized();
+  case SpringGeometry::planar: {
+    const Vec3 c = p.direction.normalized();
+    const Vec3 w = d - c.dot(d) * c;
+    const double n = w.norm();
+    return n > 0.0 ? Vec3(w / n) : Vec3(Vec3::Zero());
+  }
+  case SpringGeometry::point_to_plane:
+    return -k.normal.normalized();
+  }
+  return Vec3::Zero();
+}
+
+/// The n smallest records by step, ascending (ties by index).
+inline std::vector<CriticalStep> lowest(std::vector<CriticalStep> all, std::size_t n) {
+  const auto less = [](const CriticalStep& a, const CriticalStep& b) {
+    return a.step < b.step || (a.step == b.step && a.index < b.index);
+  };
+  n = std::min(n, all.size());
+  std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(n), all.end(), less);
+  all.resize(n);
+  return all;
+}
+
+/// [r]x, the matrix of r x.
+inline Eigen::Matrix3d skew(const Vec3& r) {
+  Eigen::Matrix3d m;
+  m << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return m;
+}
+
+} // namespace detail
+
+/// Rigid bodies with springs, torsion springs, ball joints and unspring rules. No virtual
+/// functions; objects are addressed by the indices their `add_*` returns.
+class BodySystem {
+public:
+  BodySystem() = default;
+  /// A system under the gravitational acceleration g(t) [m/s^2].
+  explicit BodySystem(VectorTimeFunction<3> gravity) : gravity_(std::move(gravity)) {}
+
+  // ---------------------------------------------------------------- set-up
+  /// Adds a body (validated by `RigidBodies::add`); returns its index.
+  std::size_t add_body(const RigidBody& b) {
+    initialized_ = false;
+    return bodies_.add(b);
+  }
+
+  /// Adds a translational spring between point1 of body1 and point2 of body2 (`world`: a fixed
+  /// point), both in world coordinates now [m]; for `SpringGeometry::point_to_plane`, point2 is
+  /// a point of the plane and `normal` its normal (world, non-zero; carried by body 2), which
+  /// must not be given for the other geometries. Validates the parameters (spring.hpp) and
+  /// returns the spring's index. Throws InputError for an unknown body, body1 = world or
+  /// body1 = body2, non-finite points, a point-to-point or planar spring whose direction is
+  /// undefined (coincident points), or a missing or zero plane normal.
+  std::size_t add_spring(SpringParams p, long body1, const Vec3& point1, long body2,
+                         const Vec3& point2, const Vec3& normal = Vec3::Zero()) {
+    const std::string& obj = p.name;
+    require_pair(obj, body1, body2);
+    detail::require_finite_vec(obj, "point1", point1);
+    detail::require_finite_vec(obj, "point2", point2);
+    const bool plane = p.geometry == SpringGeometry::point_to_plane;
+    detail::require_finite_vec(obj, "normal", normal);
+    if (plane)
+      grain::detail::require(normal.norm() > 0.0, obj, "|normal|", normal.norm(),
+                             "(0, inf) (the plane normal of a point-to-plane spring)");
+    else
+      grain::detail::require(normal.norm() == 0.0, obj, "|normal|", normal.norm(),
+                             "0 (a normal is given for the point-to-plane geometry only)");
+    SpringKinematics k;
+    k.p1 = point1;
+    k.p2 = point2;
+    k.normal = plane ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
+    validate(p);
+    if (p.geometry == SpringGeometry::point_to_point || p.geometry == SpringGeometry::planar)
+      grain::detail::require(
+          detail::spring_direction(p, k).squaredNorm() > 0.0, obj, "|point2 - point1|",
+          p.geometry == SpringGeometry::planar
+              ? (point2 - point1 -
+                 p.direction.normalized().dot(point2 - point1) * p.direction.normalized())
+                    .norm()
+              : (point2 - point1).norm(),
+          "(0, inf) (coincident points leave the direction undefined)");
+    SpringLink l;
+    l.body1 = body1;
+    l.body2 = body2;
+    const auto b1 = static_cast<std::size_t>(body1);
+    l.local1 = to_local(bodies_, b1, point1);
+    if (body2 == world) {
+      l.local2 = point2;
+      l.normal2 = k.normal;
+    } else {
+      const auto b2 = static_cast<std::size_t>(body2);
+      l.local2 = to_local(bodies_, b2, point2);
+      l.normal2 = rotation(bodies_, b2).transpose() * k.normal;
+    }
+    SpringState st = init_spring(p, k, time_);
+    spring_params_.push_back(std::move(p));
+    spring_states_.push_back(st);
+    spring_links_.push_back(l);
+    spring_results_.emplace_back();
+    spring_masses_.push_back(0.0);
+    initialized_ = false;
+    return spring_links_.size() - 1;
+  }
+
+  /// Adds a torsion spring between body1 and body2 (`world`: a fixed frame) with the world
+  /// directions zdir (yaw) and xdir (roll) now (torsion_spring.hpp); returns its index. Throws
+  /// InputError for an unknown body, body1 = world, body1 = body2 or bad parameters.
+  std::size_t add_torsion_spring(TorsionSpringParams p, long body1, long body2, const Vec3& zdir,
+                                 const Vec3& xdir) {
+    const std::string& obj = p.name;
+    require_pair(obj, body1, body2);
+    validate(p);
+    TorsionLink l;
+    l.body1 = body1;
+    l.body2 = body2;
+    l.frames = torsion_frames(orientation_of(body1), orientation_of(body2), zdir, xdir, obj);
+    torsion_params_.push_back(std::move(p));
+    torsion_links_.push_back(l);
+    torsion_results_.emplace_back();
+    initialized_ = false;
+    return torsion_links_.size() - 1;
+  }
+
+  /// Adds a ball joint at the world point `point` [m] between body1 and body2 (default `world`:
+  /// body1 is pinned at `point`); returns its index. Throws InputError for an unknown body,
+  /// body1 = world, body1 = body2 or a non-finite point.
+  std::size_t add_ball_joint(long body1, const Vec3& point, long body2 = world) {
+    const std::string obj = "BALL_JOINT " + std::to_string(joints_.size());
+    require_body(obj, "body1", body1, false);
+    require_body(obj, "body2", body2, true);
+    grain::detail::require(body1 != body2, obj, "body2", body2,
+                           "a body other than body1 = " + std::to_string(body1) +
+                               ", or world (-1) (a joint references two different bodies)");
+    detail::require_finite_vec(obj, "point", point);
+    BallJoint j;
+    j.body1 = body1;
+    j.body2 = body2;
+    j.local1 = to_local(bodies_, static_cast<std::size_t>(body1), point);
+    j.local2 = body2 == world ? point : to_local(bodies_, static_cast<std::size_t>(body2), point);
+    joints_.push_back(j);
+    JointResult r;
+    r.point = point;
+    joint_results_.push_back(r);
+    return joints_.size() - 1;
+  }
+
+  /// Adds an unspring rule over the springs added so far (validated by `Unspring`); returns its
+  /// index. It is checked once a step, after the springs are evaluated.
+  std::size_t add_unspring(UnspringRule rule) {
+    unsprings_.emplace_back(std::move(rule), spring_links_.size());
+    return unsprings_.size() - 1;
+  }
+
+  /// The gravitational acceleration g(t) [m/s^2].
+  void set_gravity(VectorTimeFunction<3> g) {
+    gravity_ = std::move(g);
+    initialized_ = false;
+  }
+
+  /// Global damping as Parmec's DAMPING command, with coefficients d_v(t), d_w(t) [1/s] >= 0 per
+  /// world axis: F -= m (d_v . v) and T -= J_world (d_w . omega) (component-wise products),
+  /// opposing the motion. A negative coefficient is an InputError, raised here for the current
+  /// time and by a step that meets one.
+  void set_damping(VectorTimeFunction<3> linear, VectorTimeFunction<3> angular) {
+    require_damping(linear, angular);
+    damping_linear_ = std::move(linear);
+    damping_angular_ = std::move(angular);
+    damped_ = true;
+    initialized_ = false;
+  }
+
+  /// Adaptive stepping in `run` and `steps`: each step is min(h, factor x critical()), h the step
+  /// given to them. factor in (0, 1]; 0 switches it off (the default).
+  void set_adaptive(double factor) {
+    grain::detail::require(std::isfinite(factor) && factor >= 0.0 && factor <= 1.0, "BodySystem",
+                           "adaptive factor", factor,
+                           "[0, 1] (0: off; else the fraction of the critical step)");
+    adaptive_ = factor;
+  }
+  double adaptive() const noexcept { return adaptive_; }
+
+  /// The joint gap accepted after the drift, relative to the largest joint arm [-], and the
+  /// largest number of extra drifts made to reach it (see the file comment).
+  double joint_tolerance = 1e-12;
+  int joint_iterations = 10;
+
+  // ---------------------------------------------------------------- running
+  /// Evaluates the forces of the current configuration (done by the first step; call it to get
+  /// spring results or critical steps before running).
+  void initialize() {
+    compute_forces(0.0);
+    initialized_ = true;
+  }
+
+  /// One step of length h [s] (see the file comment). Throws InputError for h not finite and > 0.
+  void step(double h) {
+    grain::detail::require_positive("BodySystem::step", "h", h);
+    if (!initialized_) initialize();
+    kick(bodies_, h);
+    if (joints_.empty()) {
+      clear_forces(bodies_);
+      kick_drift(bodies_, h); // pure drift: the forces are zero
+    } else {
+      drift_with_joints(h);
+    }
+    time_ += h;
+    compute_forces(h);
+    kick(bodies_, h);
+    if (!joints_.empty()) {
+      factor_joints();
+      impulse_end_.assign(joints_.size(), Vec3::Zero());
+      apply_joint_impulses(-joint_velocities(), impulse_end_);
+      for (std::size_t j = 0; j < joints_.size(); ++j) {
+        const auto [p1, p2] = joint_points(j);
+        joint_results_[j].point = p1;
+        joint_results_[j].gap = (p1 - p2).norm();
+        joint_results_[j].reaction = (impulse_half_[j] + impulse_end_[j]) / h;
+      }
+    }
+    for (auto& u : unsprings_)
+      u.update(std::span<const SpringResult>(spring_results_),
+               std::span<SpringState>(spring_states_));
+    h_ = h;
+    ++steps_;
+  }
+
+  /// Runs n steps of h [s] (with adaptive stepping: of at most h), calling each observer after
+  /// every step (`start(sys)` before and `finish(sys)` after the run, if it has them; see
+  /// io::every).
+  template <class... Observers>
+  void steps(long n, double h, Observers&&... obs) {
+    grain::detail::require_positive("BodySystem::steps", "h", h);
+    if (!initialized_) initialize();
+    h_ = h;
+    (grain::detail::start_observer(obs, *this), ...);
+    for (long k = 0; k < n; ++k) {
+      step(next_step(h));
+      (obs(*this), ...);
+    }
+    (grain::detail::finish_observer(obs, *this), ...);
+  }
+
+  /// Runs for `duration` [s] with steps of h [s]: without adaptive stepping, ceil(duration / h)
+  /// steps of h (the end rounded up to a whole step, as Simulation::run); with it, steps of
+  /// min(h, factor x critical()), the last one shortened to end at t + duration.
+  template <class... Observers>
+  void run(double duration, double h, Observers&&... obs) {
+    grain::detail::require_non_negative("BodySystem::run", "duration", duration);
+    grain::detail::require_positive("BodySystem::run", "h", h);
+    if (!initialized_) initialize();
+    if (adaptive_ == 0.0) {
+      steps(static_cast<long>(std::ceil(duration / h - 1e-9)), h, std::forward<Observers>(obs)...);
+      return;
+    }
+    const double end = time_ + duration;
+    h_ = h;
+    (grain::detail::start_observer(obs, *this), ...);
+    while (time_ < end - 1e-12 * h) {
+      const double hk = std::min(next_step(h), end - time_);
+      step(hk);
+      (obs(*this), ...);
+    }
+    (grain::detail::finish_observer(obs, *this), ...);
+  }
+
+  // ---------------------------------------------------------------- state
+  double time() const noexcept { return time_; }
+  /// The last step length [s] (the nominal h of the run before its first step).
+  double time_step() const noexcept { return h_; }
+  long step_count() const noexcept { return steps_; }
+
+  RigidBodies& bodies() noexcept { return bodies_; }
+  const RigidBodies& bodies() const noexcept { return bodies_; }
+
+  std::size_t spring_count() const noexcept { return spring_links_.size(); }
+  std::size_t torsion_spring_count() const noexcept { return torsion_links_.size(); }
+  std::size_t joint_count() const noexcept { return joints_.size(); }
+  std::size_t unspring_count() const noexcept { return unsprings_.size(); }
+
+  const SpringParams& spring_params(std::size_t i) const { return spring_params_.at(i); }
+  const SpringState& spring_state(std::size_t i) const { return spring_states_.at(i); }
+  const SpringLink& spring_link(std::size_t i) const { return spring_links_.at(i); }
+  /// The spring's result of its last evaluation (forces at the end of the last step).
+  const SpringResult& spring_result(std::size_t i) const { return spring_results_.at(i); }
+  std::span<const SpringResult> spring_results() const noexcept { return spring_results_; }
+  /// The equivalent mass used for the spring's damping ratio in its last evaluation [kg].
+  double spring_mass(std::size_t i) const { return spring_masses_.at(i); }
+  /// World positions of the spring's points 1 and 2 now (the plane: point 1 and the plane's
+  /// point) [m].
+  std::pair<Vec3, Vec3> spring_points(std::size_t i) const {
+    const SpringLink& l = spring_links_.at(i);
+    return {to_world(bodies_, static_cast<std::size_t>(l.body1), l.local1), point2_of(l)};
+  }
+
+  const TorsionSpringParams& torsion_params(std::size_t i) const { return torsion_params_.at(i); }
+  const TorsionLink& torsion_link(std::size_t i) const { return torsion_links_.at(i); }
+  const TorsionResult& torsion_result(std::size_t i) const { return torsion_results_.at(i); }
+
+  const BallJoint& joint(std::size_t i) const { return joints_.at(i); }
+  const JointResult& joint_result(std::size_t i) const { return joint_results_.at(i); }
+  /// World positions of the joint's point on body 1 and on body 2 (or the fixed point) now [m].
+  std::pair<Vec3, Vec3> joint_points(std::size_t i) const {
+    const BallJoint& j = joints_.at(i);
+    const Vec3 p1 = to_world(bodies_, static_cast<std::size_t>(j.body1), j.local1);
+    const Vec3 p2 = j.body2 == world
+                        ? j.local2
+                        : to_world(bodies_, static_cast<std::size_t>(j.body2), j.local2);
+    return {p1, p2};
+  }
+
+  const Unspring& unspring(std::size_t i) const { return unsprings_.at(i); }
+
+  /// The number of drifts made in the last step to close the joint gaps (1 without joints).
+  int joint_drifts() const noexcept { return joints_.empty() ? 1 : joint_drifts_; }
+
+  /// Gravity g(t) at the current time [m/s^2].
+  Vec3 gravity() const { return gravity_(time_); }
+
+  /// Sum of the bodies' kinetic energies [J].
+  double kinetic_energy() const {
+    double e = 0.0;
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      e += grain::bodies::kinetic_energy(bodies_, i);
+    return e;
+  }
+  /// Gravitational potential energy -sum m g(t) . x [J] (zero at the origin).
+  double potential_energy() const {
+    const Vec3 g = gravity_(time_);
+    double e = 0.0;
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      e -= bodies_.mass[i] * g.dot(bodies_.position[i]);
+    return e;
+  }
+
+  // ---------------------------------------------------------------- critical steps
+  /// Per-spring estimates of every spring that is on, in index order (see the file comment).
+  std::vector<CriticalStep> spring_critical_steps() {
+    if (!initialized_) initialize();
+    std::vector<CriticalStep> out;
+    for (std::size_t i = 0; i < spring_links_.size(); ++i) {
+      const CriticalStep c = spring_estimate(i);
+      if (std::isfinite(c.step)) out.push_back(c);
+    }
+    return out;
+  }
+  /// Per-torsion-spring estimates of every torsion spring with a stiff angle, in index order.
+  std::vector<CriticalStep> torsion_critical_steps() {
+    if (!initialized_) initialize();
+    std::vector<CriticalStep> out;
+    for (std::size_t i = 0; i < torsion_links_.size(); ++i) {
+      CriticalStep c = torsion_estimate(i, nullptr);
+      if (std::isfinite(c.step)) out.push_back(c);
+    }
+    return out;
+  }
+  /// Per-body estimates of every body with a spring that is on, in index order.
+  std::vector<CriticalStep> body_critical_steps() {
+    if (!initialized_) initialize();
+    const std::size_t n = bodies_.size();
+    std::vector<double> w2(n, 0.0), xi(n, 0.0);
+    const auto add = [&](long b, double omega, double ratio) {
+      if (b == world) return;
+      const auto i = static_cast<std::size_t>(b);
+      w2[i] += omega * omega;
+      xi[i] = std::max(xi[i], ratio);
+    };
+    for (std::size_t s = 0; s < spring_links_.size(); ++s) {
+      const CriticalStep c = spring_estimate(s);
+      if (!std::isfinite(c.step)) continue;
+      add(spring_links_[s].body1, c.omega, c.damping_ratio);
+      add(spring_links_[s].body2, c.omega, c.damping_ratio);
+    }
+    for (std::size_t s = 0; s < torsion_links_.size(); ++s) {
+      std::array<CriticalStep, 3> angles;
+      torsion_estimate(s, &angles);
+      for (const CriticalStep& c : angles) {
+        if (!std::isfinite(c.step)) continue;
+        add(torsion_links_[s].body1, c.omega, c.damping_ratio);
+        add(torsion_links_[s].body2, c.omega, c.damping_ratio);
+      }
+    }
+    std::vector<CriticalStep> out;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (w2[i] <= 0.0) continue;
+      const double omega = std::sqrt(w2[i]);
+      out.push_back({critical_step(omega, xi[i]), i, omega, xi[i]});
+    }
+    return out;
+  }
+
+  /// The n_springs lowest per-spring and n_bodies lowest per-body estimates, ascending: the
+  /// lists of Parmec's CRITICAL(perspring, perparticle).
+  CriticalSteps critical(std::size_t n_springs, std::size_t n_bodies) {
+    return {detail::lowest(spring_critical_steps(), n_springs),
+            detail::lowest(body_critical_steps(), n_bodies)};
+  }
+  /// The n lowest per-torsion-spring estimates, ascending.
+  std::vector<CriticalStep> critical_torsion(std::size_t n) {
+    return detail::lowest(torsion_critical_steps(), n);
+  }
+  /// The global estimate [s]: the minimum over springs, torsion springs and bodies (infinity if
+  /// no spring is on).
+  double critical() {
+    double h = std::numeric_limits<double>::infinity();
+    for (const auto& c : spring_critical_steps())
+      h = std::min(h, c.step);
+    for (const auto& c : torsion_critical_steps())
+      h = std::min(h, c.step);
+    for (const auto& c : body_critical_steps())
+      h = std::min(h, c.step);
+    return h;
+  }
+
+private:
+  void require_body(const std::string& obj, const char* what, long b, bool world_ok) const {
+    const bool ok =
+        (world_ok && b == world) || (b >= 0 && static_cast<std::size_t>(b) < bodies_.size());
+    grain::detail::require(ok, obj, what, b,
+                           "[0, " + std::to_string(bodies_.size()) + ")" +
+                               (world_ok ? " or world (-1)" : " (a body)"));
+  }
+
+  /// Throws InputError unless body1 is a body and body2 another body or the world.
+  void require_pair(const std::string& obj, long body1, long body2) const {
+    require_body(obj, "body1", body1, false);
+    require_body(obj, "body2", body2, true);
+    grain::detail::require(body1 != body2, obj, "body2", body2,
+                           "a body other than body1 = " + std::to_string(body1) +
+                               ", or world (-1)");
+  }
+
+  /// Throws InputError if a damping coefficient is negative now.
+  void require_damping(const VectorTimeFunction<3>& linear,
+                       const VectorTimeFunction<3>& angular) const {
+    const double d = std::min(linear(time_).minCoeff(), angular(time_).minCoeff());
+    if (!(d >= 0.0))
+      throw InputError("BodySystem damping: coefficient = " + grain::detail::to_text(d) +
+                       " at t = " + grain::detail::to_text(time_) +
+                       " s is invalid; valid range: [0, inf) 1/s");
+  }
+
+  Eigen::Quaterniond orientation_of(long b) const {
+    return b == world ? Eigen::Quaterniond::Identity()
+                      : bodies_.orientation[static_cast<std::size_t>(b)];
+  }
+  Vec3 omega_of(long b) const {
+    return b == world ? Vec3(Vec3::Zero()) : bodies_.omega[static_cast<std::size_t>(b)];
+  }
+  Eigen::Matrix3d inverse_inertia_of(long b) const {
+    return b == world ? Eigen::Matrix3d(Eigen::Matrix3d::Zero())
+                      : inverse_world_inertia(bodies_, static_cast<std::size_t>(b));
+  }
+  /// The inverse-mass matrix of the material point of body b at world point x (zero for world).
+  Eigen::Matrix3d point_k(long b, const Vec3& x) const {
+    return b == world ? Eigen::Matrix3d(Eigen::Matrix3d::Zero())
+                      : point_inverse_mass(bodies_, static_cast<std::size_t>(b), x);
+  }
+
+  Vec3 point2_of(const SpringLink& l) const {
+    return l.body2 == world ? l.local2
+                            : to_world(bodies_, static_cast<std::size_t>(l.body2), l.local2);
+  }
+
+  SpringKinematics spring_kinematics(const SpringLink& l, bool plane) const {
+    SpringKinematics k;
+    const auto b1 = static_cast<std::size_t>(l.body1);
+    k.p1 = to_world(bodies_, b1, l.local1);
+    k.v1 = point_velocity(bodies_, b1, k.p1);
+    if (l.body2 == world) {
+      k.p2 = l.local2;
+      k.normal = l.normal2;
+    } else {
+      const auto b2 = static_cast<std::size_t>(l.body2);
+      k.p2 = to_world(bodies_, b2, l.local2);
+      k.normal = rotation(bodies_, b2) * l.normal2;
+      k.v2 = point_velocity(bodies_, b2, plane ? k.p1 : k.p2);
+    }
+    return k;
+  }
+
+  /// Forces and torques of the current configuration at time_; h is the step just made (0 at
+  /// initialisation).
+  void compute_forces(double h) {
+    clear_forces(bodies_);
+    const Vec3 g = gravity_(time_);
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      bodies_.force[i] += bodies_.mass[i] * g;
+    if (damped_) {
+      const Vec3 dv = damping_linear_(time_), dw = damping_angular_(time_);
+      require_damping(damping_linear_, damping_angular_);
+      for (std::size_t i = 0; i < bodies_.size(); ++i) {
+        bodies_.force[i] -= bodies_.mass[i] * dv.cwiseProduct(bodies_.velocity[i]);
+        bodies_.torque[i] -= world_inertia(bodies_, i) * dw.cwiseProduct(bodies_.omega[i]);
+      }
+    }
+    for (std::size_t s = 0; s < spring_links_.size(); ++s) {
+      const SpringLink& l = spring_links_[s];
+      const SpringParams& p = spring_params_[s];
+      const bool plane = p.geometry == SpringGeometry::point_to_plane;
+      const SpringKinematics k = spring_kinematics(l, plane);
+      const Eigen::Matrix3d K = point_k(l.body1, k.p1) + point_k(l.body2, plane ? k.p1 : k.p2);
+      const Vec3 e = detail::spring_direction(p, k);
+      double m = 0.0;
+      if (e.squaredNorm() > 0.0) {
+        m = 1.0 / e.dot(K * e);
+      } else {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, Eigen::EigenvaluesOnly);
+        m = 1.0 / eig.eigenvalues().maxCoeff();
+      }
+      spring_masses_[s] = m;
+      const SpringResult r = evaluate(p, spring_states_[s], k, time_, h, m);
+      spring_results_[s] = r;
+      apply_force(bodies_, static_cast<std::size_t>(l.body1), r.force, k.p1);
+      if (l.body2 != world)
+        apply_force(bodies_, static_cast<std::size_t>(l.body2), -r.force, plane ? k.p1 : k.p2);
+    }
+    for (std::size_t s = 0; s < torsion_links_.size(); ++s) {
+      const TorsionLink& l = torsion_links_[s];
+      const TorsionKinematics k{orientation_of(l.body1), orientation_of(l.body2), omega_of(l.body1),
+                                omega_of(l.body2)};
+      const TorsionResult r = evaluate(torsion_params_[s], l.frames, k, torsion_inertia(l, k.q1));
+      torsion_results_[s] = r;
+      bodies_.torque[static_cast<std::size_t>(l.body1)] += r.torque;
+      if (l.body2 != world) bodies_.torque[static_cast<std::size_t>(l.body2)] -= r.torque;
+    }
+  }
+
+  /// The relative effective inertia about body 1's torsion axes x, y, z [kg m^2].
+  Vec3 torsion_inertia(const TorsionLink& l, const Eigen::Quaterniond& q1) const {
+    const Eigen::Matrix3d R1 = q1.normalized().toRotationMatrix();
+    const Vec3 x = R1 * l.frames.x1, z = R1 * l.frames.z1, y = z.cross(x);
+    const Eigen::Matrix3d inv = inverse_inertia_of(l.body1) + inverse_inertia_of(l.body2);
+    return Vec3(1.0 / x.dot(inv * x), 1.0 / y.dot(inv * y), 1.0 / z.dot(inv * z));
+  }
+
+  CriticalStep spring_estimate(std::size_t s) const {
+    CriticalStep c;
+    c.index = s;
+    const SpringState& st = spring_states_[s];
+    const SpringResult& r = spring_results_[s];
+    const SpringParams& p = spring_params_[s];
+    const double k = r.stiffness;
+    if (!st.active || st.rule_unload || !(k > 0.0) || r.direction.squaredNorm() == 0.0) return c;
+    const SpringLink& l = spring_links_[s];
+    const bool plane = p.geometry == SpringGeometry::point_to_plane;
+    const SpringKinematics kin = spring_kinematics(l, plane);
+    const Eigen::Matrix3d K = point_k(l.body1, kin.p1) + point_k(l.body2, plane ? kin.p1 : kin.p2);
+    const double m = 1.0 / r.direction.dot(K * r.direction);
+    c.omega = std::sqrt(k / m);
+    double xi = p.damping_ratio;
+    if (p.dashpot)
+      xi = std::max(0.0, detail::table_slope(*p.dashpot, r.velocity)) / (2.0 * std::sqrt(k * m));
+    c.damping_ratio = xi;
+    c.step = critical_step(c.omega, xi);
+    if (p.friction > 0.0 && p.kskn > 0.0) {
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, Eigen::EigenvaluesOnly);
+      const double wt = std::sqrt(p.kskn * k * eig.eigenvalues().maxCoeff());
+      const double ht = critical_step(wt, xi);
+      if (ht < c.step) {
+        c.step = ht;
+        c.omega = wt;
+      }
+    }
+    return c;
+  }
+
+  /// The limiting angle of torsion spring s; with `angles`, each angle's estimate too.
+  CriticalStep torsion_estimate(std::size_t s, std::array<CriticalStep, 3>* angles) const {
+    const TorsionLink& l = torsion_links_[s];
+    const TorsionSpringParams& p = torsion_params_[s];
+    const TorsionResult& r = torsion_results_[s];
+    const Vec3 J = torsion_inertia(l, orientation_of(l.body1));
+    const std::array<const TorsionLaw*, 3> laws{&p.roll, &p.pitch, &p.yaw};
+    const bool cone = p.cone[0] || p.cone[1] || p.cone[2];
+    int first = -1;
+    for (int a = 0; a < 3 && cone; ++a)
+      if (p.cone[static_cast<std::size_t>(a)]) {
+        first = a;
+        break;
+      }
+    const double radial = cone ? cone_angle(p, r.angles) : 0.0;
+    CriticalStep worst;
+    worst.index = s;
+    for (int a = 0; a < 3; ++a) {
+      const auto ua = static_cast<std::size_t>(a);
+      CriticalStep c;
+      c.index = s;
+      const bool coupled = cone && p.cone[ua];
+      const TorsionLaw& law = *laws[static_cast<std::size_t>(coupled ? first : a)];
+      const double angle = coupled ? radial : r.angles[a];
+      const double rate = r.rates[a];
+      const double k = law.spring ? detail::table_slope(*law.spring, angle) : 0.0;
+      if (k > 0.0) {
+        c.omega = std::sqrt(k / J[a]);
+        double xi = law.damping_ratio;
+        if (law.dashpot)
+          xi = std::max(0.0, detail::table_slope(*law.dashpot, rate)) / (2.0 * std::sqrt(k * J[a]));
+        c.damping_ratio = xi;
+        c.step = critical_step(c.omega, xi);
+      }
+      if (angles) (*angles)[ua] = c;
+      if (c.step < worst.step) worst = c;
+    }
+    return worst;
+  }
+
+  double next_step(double h) {
+    if (adaptive_ == 0.0) return h;
+    const double hc = critical();
+    return std::isfinite(hc) ? std::min(h, adaptive_ * hc) : h;
+  }
+
+  /// Stages 2 and 3 of a step: impulses at the configuration X(t) that make the drift over h
+  /// close every joint gap, then the drift. The first impulse gives the joint points the relative
+  /// velocity -C(t)/h; as the rotation over the step is not linear, the gap after the drift is
+  /// then of order h^2 |omega|^2 |r|, and further impulses (with the same matrix, the joint
+  /// directions at X(t), as in SHAKE) correct the velocity by -C(t+h)/h and the drift is made
+  /// again, until the largest gap is below `joint_tolerance` (relative to the largest arm) or
+  /// does not decrease any more (at most `joint_iterations` times).
+  void drift_with_joints(double h) {
+    factor_joints();
+    impulse_half_.assign(joints_.size(), Vec3::Zero());
+    const std::size_t nj = joints_.size();
+    Eigen::VectorXd rhs(static_cast<Eigen::Index>(3 * nj));
+    for (std::size_t j = 0; j < nj; ++j) {
+      const auto [p1, p2] = joint_points(j);
+      rhs.segment<3>(static_cast<Eigen::Index>(3 * j)) = -(p1 - p2) / h;
+    }
+    rhs -= joint_velocities();
+    apply_joint_impulses(rhs, impulse_half_);
+    saved_position_ = bodies_.position;
+    saved_orientation_ = bodies_.orientation;
+    double arm = 0.0;
+    for (const auto& e : joint_ends_)
+      for (const auto& x : e)
+        arm = std::max(arm, x.arm.norm());
+    const double tol = joint_tolerance * std::max(arm, std::numeric_limits<double>::min());
+    double previous = std::numeric_limits<double>::infinity();
+    for (int it = 0;; ++it) {
+      joint_drifts_ = it + 1;
+      saved_velocity_ = bodies_.velocity;
+      saved_omega_ = bodies_.omega;
+      clear_forces(bodies_);
+      kick_drift(bodies_, h); // pure drift: the forces are zero
+      double worst = 0.0;
+      for (std::size_t j = 0; j < nj; ++j) {
+        const auto [p1, p2] = joint_points(j);
+        const Vec3 c = p1 - p2;
+        worst = std::max(worst, c.norm());
+        rhs.segment<3>(static_cast<Eigen::Index>(3 * j)) = -c / h;
+      }
+      if (worst <= tol || worst >= 0.5 * previous || it >= joint_iterations) return;
+      previous = worst;
+      bodies_.position = saved_position_;
+      bodies_.orientation = saved_orientation_;
+      bodies_.velocity = saved_velocity_;
+      bodies_.omega = saved_omega_;
+      apply_joint_impulses(rhs, impulse_half_);
+    }
+  }
+
+  /// Assembles J M^-1 J^T for the current configuration and factorises it; keeps the arms.
+  void factor_joints() {
+    const std::size_t nj = joints_.size();
+    joint_ends_.assign(bodies_.size(), {});
+    for (std::size_t j = 0; j < nj; ++j) {
+      const BallJoint& jt = joints_[j];
+      const auto [p1, p2] = joint_points(j);
+      const auto b1 = static_cast<std::size_t>(jt.body1);
+      joint_ends_[b1].push_back({j, 1.0, p1 - bodies_.position[b1]});
+      if (jt.body2 != world) {
+        const auto b2 = static_cast<std::size_t>(jt.body2);
+        joint_ends_[b2].push_back({j, -1.0, p2 - bodies_.position[b2]});
+      }
+    }
+    std::vector<Eigen::Triplet<double>> trip;
+    double diag = 0.0;
+    joint_inverse_inertia_.assign(bodies_.size(), Eigen::Matrix3d::Zero());
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      if (joint_ends_[b].empty()) continue;
+      const Eigen::Matrix3d inv = inverse_world_inertia(bodies_, b);
+      joint_inverse_inertia_[b] = inv;
+      const double im = bodies_.inv_mass[b];
+      for (const JointEnd& x : joint_ends_[b])
+        for (const JointEnd& y : joint_ends_[b]) {
+          const Eigen::Matrix3d blk =
+              x.sign * y.sign *
+              (im * Eigen::Matrix3d::Identity() - detail::skew(x.arm) * inv * detail::skew(y.arm));
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+              trip.emplace_back(static_cast<int>(3 * x.joint) + r,
+                                static_cast<int>(3 * y.joint) + c, blk(r, c));
+          if (x.joint == y.joint) diag = std::max(diag, blk.diagonal().maxCoeff());
+        }
+    }
+    const double eps = 1e-12 * diag;
+    for (std::size_t r = 0; r < 3 * nj; ++r)
+      trip.emplace_back(static_cast<int>(r), static_cast<int>(r), eps);
+    Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(3 * nj),
+                                  static_cast<Eigen::Index>(3 * nj));
+    A.setFromTriplets(trip.begin(), trip.end());
+    if (!joint_solver_)
+      joint_solver_ = std::make_unique<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>>();
+    joint_solver_->compute(A);
+    if (joint_solver_->info() != Eigen::Success)
+      throw std::runtime_error("BodySystem: the ball-joint system could not be factorised at t = " +
+                               grain::detail::to_text(time_) + " s");
+  }
+
+  /// Relative velocities u = J V of all joints (3 per joint) with the arms of `factor_joints`.
+  Eigen::VectorXd joint_velocities() const {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(3 * joints_.size()));
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      for (const JointEnd& x : joint_ends_[b])
+        u.segment<3>(static_cast<Eigen::Index>(3 * x.joint)) +=
+            x.sign * (bodies_.velocity[b] + bodies_.omega[b].cross(x.arm));
+    return u;
+  }
+
+  /// Solves (J M^-1 J^T) lambda = rhs, applies the impulses (lambda on body 1, -lambda on body
+  /// 2) to the velocities and adds lambda to `acc`.
+  void apply_joint_impulses(const Eigen::VectorXd& rhs, std::vector<Vec3>& acc) {
+    const Eigen::VectorXd lambda = joint_solver_->solve(rhs);
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      for (const JointEnd& x : joint_ends_[b]) {
+        const Vec3 l = x.sign * Vec3(lambda.segment<3>(static_cast<Eigen::Index>(3 * x.joint)));
+        bodies_.velocity[b] += bodies_.inv_mass[b] * l;
+        bodies_.omega[b] += joint_inverse_inertia_[b] * x.arm.cross(l);
+      }
+    for (std::size_t j = 0; j < joints_.size(); ++j)
+      acc[j] += lambda.segment<3>(static_cast<Eigen::Index>(3 * j));
+  }
+
+  RigidBodies bodies_{};
+  std::vector<SpringParams> spring_params_{};
+  std::vector<SpringState> spring_states_{};
+  std::vector<SpringLink> spring_links_{};
+  std::vector<SpringResult> spring_results_{};
+  std::vector<double> spring_masses_{};
+  std::vector<TorsionSpringParams> torsion_params_{};
+  std::vector<TorsionLink> torsion_links_{};
+  std::vector<TorsionResult> torsion_results_{};
+  std::vector<BallJoint> joints_{};
+  std::vector<JointResult> joint_results_{};
+  std::vector<Vec3> impulse_half_{}, impulse_end_{};
+  struct JointEnd {
+    std::size_t joint;
+    double sign; // +1 body 1, -1 body 2
+    Vec3 arm;    // joint point - centre [m]
+  };
+  std::vector<std::vector<JointEnd>> joint_ends_{};
+  std::vector<Eigen::Matrix3d> joint_inverse_inertia_{};
+  std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> joint_solver_{};
+  std::vector<Vec3> saved_position_{}, saved_velocity_{}, saved_omega_{};
+  std::vector<Eigen::Quaterniond> saved_orientation_{};
+  std::vector<Unspring> unsprings_{};
+  VectorTimeFunction<3> gravity_{};
+  VectorTimeFunction<3> damping_linear_{}, damping_angular_{};
+  bool damped_ = false;
+  double adaptive_ = 0.0;
+  double time_ = 0.0;
+  double h_ = 0.0;
+  long steps_ = 0;
+  bool initialized_ = false;
+  int joint_drifts_ = 0;
+};
+
+} // namespace grain::bodies
