@@ -20,18 +20,18 @@
 /// One column per item and entity, named `<ENTITY>_<kind><index> [unit]`, e.g. `F_spring0 [N]`,
 /// after `time [s]` and `step`. Entities (SI units):
 ///
-/// | source | entities |
-/// |---|---|
-/// | body | position `PX PY PZ |P|` [m]; displacement since the history started `DX DY DZ |D|` [m];
-/// velocity `VX VY VZ |V|` [m/s]; angular velocity `OX OY OZ |O|` [rad/s]; force `FX FY FZ |F|` [N]
-/// and torque about the centre `TX TY TZ |T|` [N m]: the applied loads of the current configuration
-/// (gravity, global damping, springs, torsion springs; joint reactions are impulses and not
-/// included) | | spring | `LENGTH` [m], `STROKE` [m], total force `F` [N], elastic force `SF` [N],
-/// friction force `FF` [N], state code `SS` [-] (spring.hpp) | | torsion spring | body 1's axes
-/// `ZDIR_X ZDIR_Y ZDIR_Z XDIR_X XDIR_Y XDIR_Z` [-]; angles `ROLL PITCH YAW` [rad]; total torques
-/// `TRQTOT_R TRQTOT_P TRQTOT_Y` and elastic torques `TRQSPR_R TRQSPR_P TRQSPR_Y` [N m] | | joint |
-/// reaction on body 1 `JREAC_X JREAC_Y JREAC_Z |JREAC|` [N] (the mean joint force of the last step)
-/// |
+/// - body: position `PX PY PZ |P|` [m]; displacement since the history started `DX DY DZ |D|`
+///   [m]; velocity `VX VY VZ |V|` [m/s]; angular velocity `OX OY OZ |O|` [rad/s]; force
+///   `FX FY FZ |F|` [N] and torque about the centre `TX TY TZ |T|` [N m]: the applied loads of
+///   the current configuration (gravity, global damping, springs, torsion springs; joint
+///   reactions are impulses and not included);
+/// - spring: `LENGTH` [m], `STROKE` [m], total force `F` [N], elastic force `SF` [N], friction
+///   force `FF` [N], state code `SS` [-] (spring.hpp);
+/// - torsion spring: body 1's axes `ZDIR_X ZDIR_Y ZDIR_Z XDIR_X XDIR_Y XDIR_Z` [-]; angles
+///   `ROLL PITCH YAW` [rad]; total torques `TRQTOT_R TRQTOT_P TRQTOT_Y` and elastic torques
+///   `TRQSPR_R TRQSPR_P TRQSPR_Y` [N m];
+/// - joint: reaction on body 1 `JREAC_X JREAC_Y JREAC_Z |JREAC|` [N] (the mean joint force of
+///   the last step).
 ///
 /// Unknown entities and item indices are InputErrors raised when the history starts (before the
 /// file is made), naming the valid ones.

@@ -245,6 +245,7 @@ public:
   /// undefined (coincident points), or a missing or zero plane normal.
   std::size_t add_spring(SpringParams p, long body1, const Vec3& point1, long body2,
                          const Vec3& point2, const Vec3& normal = Vec3::Zero()) {
+    if (p.name == "SPRING") p.name += " " + std::to_string(spring_links_.size());
     const std::string& obj = p.name;
     require_pair(obj, body1, body2);
     detail::require_finite_vec(obj, "point1", point1);
@@ -299,6 +300,7 @@ public:
   /// InputError for an unknown body, body1 = world, body1 = body2 or bad parameters.
   std::size_t add_torsion_spring(TorsionSpringParams p, long body1, long body2, const Vec3& zdir,
                                  const Vec3& xdir) {
+    if (p.name == "TORSION_SPRING") p.name += " " + std::to_string(torsion_links_.size());
     const std::string& obj = p.name;
     require_pair(obj, body1, body2);
     validate(p);
@@ -339,6 +341,7 @@ public:
   /// Adds an unspring rule over the springs added so far (validated by `Unspring`); returns its
   /// index. It is checked once a step, after the springs are evaluated.
   std::size_t add_unspring(UnspringRule rule) {
+    if (rule.name == "UNSPRING") rule.name += " " + std::to_string(unsprings_.size());
     unsprings_.emplace_back(std::move(rule), spring_links_.size());
     return unsprings_.size() - 1;
   }
@@ -387,6 +390,10 @@ public:
   /// One step of length h [s] (see the file comment). Throws InputError for h not finite and > 0.
   void step(double h) {
     grain::detail::require_positive("BodySystem::step", "h", h);
+    grain::detail::require(std::isfinite(joint_tolerance) && joint_tolerance > 0.0, "BodySystem",
+                           "joint_tolerance", joint_tolerance, "(0, inf) (relative gap)");
+    grain::detail::require(joint_iterations >= 0, "BodySystem", "joint_iterations",
+                           joint_iterations, "[0, inf)");
     if (!initialized_) initialize();
     kick(bodies_, h);
     if (joints_.empty()) {
@@ -409,9 +416,24 @@ public:
         joint_results_[j].reaction = (impulse_half_[j] + impulse_end_[j]) / h;
       }
     }
+    bool fired = false;
     for (auto& u : unsprings_)
-      u.update(std::span<const SpringResult>(spring_results_),
-               std::span<SpringState>(spring_states_));
+      fired |= u.update(std::span<const SpringResult>(spring_results_),
+                        std::span<SpringState>(spring_states_))
+                   .fired;
+    if (fired) {
+      // the undone springs act no more from the next kick on: the loads of the new spring
+      // states (the springs' own state advanced once this step, so it is kept, and so are the
+      // results of the step, which the rule judged)
+      // and were reported (results)
+      const auto states = spring_states_;
+      const auto results = spring_results_;
+      const auto torsion = torsion_results_;
+      compute_forces(h);
+      spring_states_ = states;
+      spring_results_ = results;
+      torsion_results_ = torsion;
+    }
     h_ = h;
     ++steps_;
   }
@@ -422,6 +444,7 @@ public:
   template <class... Observers>
   void steps(long n, double h, Observers&&... obs) {
     grain::detail::require_positive("BodySystem::steps", "h", h);
+    grain::detail::require(n >= 0, "BodySystem::steps", "n", n, "[0, inf) steps");
     if (!initialized_) initialize();
     h_ = h;
     (grain::detail::start_observer(obs, *this), ...);
@@ -441,7 +464,10 @@ public:
     grain::detail::require_positive("BodySystem::run", "h", h);
     if (!initialized_) initialize();
     if (adaptive_ == 0.0) {
-      steps(static_cast<long>(std::ceil(duration / h - 1e-9)), h, std::forward<Observers>(obs)...);
+      const double n = std::ceil(duration / h - 1e-9);
+      grain::detail::require(n < 1e15, "BodySystem::run", "duration / h", duration / h,
+                             "[0, 1e15) steps");
+      steps(static_cast<long>(n), h, std::forward<Observers>(obs)...);
       return;
     }
     const double end = time_ + duration;
@@ -594,6 +620,12 @@ public:
   /// no spring is on).
   double critical() {
     double h = std::numeric_limits<double>::infinity();
+    if (damped_) {
+      // v <- (1 - d h) v per step under global damping d: stable for h < 2 / d
+      const double d =
+          std::max(damping_linear_(time_).maxCoeff(), damping_angular_(time_).maxCoeff());
+      if (d > 0.0) h = 2.0 / d;
+    }
     for (const auto& c : spring_critical_steps())
       h = std::min(h, c.step);
     for (const auto& c : torsion_critical_steps())
@@ -675,6 +707,10 @@ private:
   void compute_forces(double h) {
     clear_forces(bodies_);
     const Vec3 g = gravity_(time_);
+    if (!g.allFinite())
+      grain::detail::require(false, "BodySystem", "gravity",
+                             "(non-finite) at t = " + grain::detail::to_text(time_),
+                             "finite components [m/s^2]");
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       bodies_.force[i] += bodies_.mass[i] * g;
     if (damped_) {
@@ -682,7 +718,11 @@ private:
       require_damping(damping_linear_, damping_angular_);
       for (std::size_t i = 0; i < bodies_.size(); ++i) {
         bodies_.force[i] -= bodies_.mass[i] * dv.cwiseProduct(bodies_.velocity[i]);
-        bodies_.torque[i] -= world_inertia(bodies_, i) * dw.cwiseProduct(bodies_.omega[i]);
+        // -S J S w with S = diag(sqrt(dw)): dissipative for any J (J diag(dw) w is not when dw
+        // differs per axis and J is not diagonal); equal to -J (dw w) for isotropic dw
+        const Vec3 sw = dw.cwiseSqrt();
+        bodies_.torque[i] -=
+            sw.cwiseProduct(world_inertia(bodies_, i) * sw.cwiseProduct(bodies_.omega[i]));
       }
     }
     for (std::size_t s = 0; s < spring_links_.size(); ++s) {
