@@ -648,3 +648,20 @@ TEST_CASE("body system: anisotropic global damping never adds rotational energy"
   // and the critical step knows the damping: v <- (1 - d h) v is stable for h < 2 / d
   CHECK(s.critical() == approx(2.0 / 1.0).epsilon(1e-15));
 }
+
+TEST_CASE("body system: a heavy body's joint holds as firmly as a light body's") {
+  // a body of 1e8 kg pinned to the world next to a 1 kg body pinned to the world: with a
+  // regularisation taken from the largest diagonal entry of the joint system (the light body's),
+  // the heavy body's joint would keep about 1e-12 x 1e8 = 1e-4 of its relative velocity
+  gb::BodySystem s;
+  s.add_body(body(1e8, 1e8, Vec3::Zero(), Vec3(1.0, 0.0, 0.0)));
+  s.add_body(body(1.0, 1e-2, Vec3(5.0, 0.0, 0.0)));
+  s.add_ball_joint(0, Vec3(0.0, 0.0, 1.0));
+  s.add_ball_joint(1, Vec3(5.0, 0.0, 1.0));
+  s.step(1e-3);
+  const auto& B = s.bodies();
+  const Vec3 arm = s.joint_points(0).first - B.position[0];
+  const Vec3 v_pin = B.velocity[0] + B.omega[0].cross(arm);
+  CHECK(v_pin.norm() < 1e-9);
+  CHECK(s.joint_result(0).gap < 1e-12);
+}

@@ -63,7 +63,7 @@
 /// energy of an undamped pendulum fluctuates at O(h^2) without drift. Initial velocities should
 /// satisfy the joints (zero relative velocity at the joint points); otherwise the first step
 /// removes the relative velocity by an inelastic impulse. A tiny diagonal regularisation (1e-12
-/// of the largest diagonal entry) lets redundant joint sets be solved (two ball joints on one
+/// of each row's diagonal entry) lets redundant joint sets be solved (two ball joints on one
 /// axis make a hinge); the reactions of a redundant set are split by the regularised solution.
 /// The joint reaction reported is the force on body 1, (lambda_2 + lambda_6) / h with lambda_2
 /// all the impulses of stages 2-3: the mean joint force over the step (exactly m g for a body
@@ -906,7 +906,7 @@ private:
       }
     }
     std::vector<Eigen::Triplet<double>> trip;
-    double diag = 0.0;
+    std::vector<double> diag(3 * nj, 0.0);
     joint_inverse_inertia_.assign(bodies_.size(), Eigen::Matrix3d::Zero());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       if (joint_ends_[b].empty()) continue;
@@ -922,12 +922,15 @@ private:
             for (int c = 0; c < 3; ++c)
               trip.emplace_back(static_cast<int>(3 * x.joint) + r,
                                 static_cast<int>(3 * y.joint) + c, blk(r, c));
-          if (x.joint == y.joint) diag = std::max(diag, blk.diagonal().maxCoeff());
+          if (x.joint == y.joint)
+            for (int r = 0; r < 3; ++r)
+              diag[3 * x.joint + static_cast<std::size_t>(r)] += blk(r, r);
         }
     }
-    const double eps = 1e-12 * diag;
+    // each row regularised relative to its own diagonal entry (a global value would make the
+    // joints of heavy bodies compliant next to those of light ones)
     for (std::size_t r = 0; r < 3 * nj; ++r)
-      trip.emplace_back(static_cast<int>(r), static_cast<int>(r), eps);
+      trip.emplace_back(static_cast<int>(r), static_cast<int>(r), 1e-12 * diag[r]);
     Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(3 * nj),
                                   static_cast<Eigen::Index>(3 * nj));
     A.setFromTriplets(trip.begin(), trip.end());
