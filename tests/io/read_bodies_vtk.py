@@ -3,11 +3,11 @@ VTK's own reader and compares them with the expected.json written next to them.
 
 Usage: read_bodies_vtk.py <directory>
 
-For every series (ASCII and binary) and kind (bodies, springs, joints): the files are numbered
+For every series (ASCII and binary) and kind (bodies, springs, torsion springs, joints): the files are numbered
 000000 ... N-1 with N the number of outputs and listed with their times in the .vtk.series file;
 each is legacy polydata in the series' format with 'grain <kind> t = <time>' in its header (a
 binary file is first walked with Python's struct); bodies and joints are points with one vertex
-each, springs one line each between their two points; the fields have the expected names,
+each (torsion springs at the centre of their body 1), springs one line each between their two points; the fields have the expected names,
 component counts and types, and every value equals the system's to a relative 1e-12 (17
 significant digits are written). Uses the helpers of read_vtk.py. Exits with status 1 and a
 message per mismatch if anything differs.
@@ -32,6 +32,12 @@ KINDS = {
         "total_force": (1, False, "total_force"), "elastic_force": (1, False, "elastic_force"),
         "friction_force": (1, False, "friction_force"), "stroke": (1, False, "stroke"),
         "length": (1, False, "length"), "state": (1, True, "state")}),
+    "torsion_springs": ("torsion_springs", "point", {
+        "torsion_spring": (1, True, None), "torque": (3, False, "torque"),
+        "xdir": (3, False, "xdir"), "ydir": (3, False, "ydir"), "zdir": (3, False, "zdir"),
+        "roll": (1, False, "roll"), "pitch": (1, False, "pitch"), "yaw": (1, False, "yaw"),
+        "spring_torque": (3, False, "spring_torque"),
+        "total_torque": (3, False, "total_torque")}),
     "joints": ("joints", "point", {
         "joint": (1, True, None), "reaction": (3, False, "reaction"), "gap": (1, False, "gap")}),
 }

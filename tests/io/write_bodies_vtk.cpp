@@ -68,6 +68,17 @@ struct Recorder {
            ", \"stroke\": " + num(r.stroke) + ", \"length\": " + num(r.length) +
            ", \"state\": " + std::to_string(s.spring_state(i).code) + "}";
     }
+    f += "], \"torsion_springs\": [";
+    for (std::size_t i = 0; i < s.torsion_spring_count(); ++i) {
+      const auto& r = s.torsion_result(i);
+      f += std::string(i ? ", " : "") +
+           "{\"point\": " + vec(b.position[static_cast<std::size_t>(s.torsion_link(i).body1)]) +
+           ", \"torque\": " + vec(r.torque) + ", \"xdir\": " + vec(r.x) +
+           ", \"ydir\": " + vec(r.y) + ", \"zdir\": " + vec(r.z) +
+           ", \"roll\": " + num(r.angles[0]) + ", \"pitch\": " + num(r.angles[1]) +
+           ", \"yaw\": " + num(r.angles[2]) + ", \"spring_torque\": " + vec(r.spring_torque) +
+           ", \"total_torque\": " + vec(r.total_torque) + "}";
+    }
     f += "], \"joints\": [";
     for (std::size_t i = 0; i < s.joint_count(); ++i) {
       const auto& r = s.joint_result(i);
@@ -110,6 +121,11 @@ int main(int argc, char** argv) {
                   .direction = Vec3::UnitX(),
                   .inactive = true},
                  2, Vec3(1.0, 0.5, -1.0), 0, Vec3(0.0, 0.2, -0.5));
+    gb::TorsionSpringParams tp;
+    tp.roll.spring = Table({-1.0, 1.0}, {-5.0, 5.0});
+    tp.yaw.spring = Table({-1.0, 1.0}, {-3.0, 3.0});
+    tp.yaw.damping_ratio = 0.2;
+    s.add_torsion_spring(tp, 2, 1, Vec3::UnitZ(), Vec3::UnitX());
     std::vector<std::string> frames;
     s.steps(kSteps, 1e-3,
             grain::io::every_steps(

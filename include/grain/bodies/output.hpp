@@ -367,13 +367,45 @@ inline void write_joints_vtk(const BodySystem& s, const std::string& path,
   o.close(path);
 }
 
-/// Output action (for io::every): the bodies file, and the springs and joints files if the
-/// system has springs or joints, numbered 000000, 000001, ..., and their series files.
+/// Torsion springs as points at the centre of body 1 with one vertex each; point data
+/// `torsion_spring` (int index), `torque` (vector, on body 1) [N m], `xdir`, `ydir`, `zdir`
+/// (body 1's axes of the spring, world) [-], `roll`, `pitch`, `yaw` [rad], `spring_torque` and
+/// `total_torque` (3 components: the elastic and the total torque of the roll, pitch and yaw
+/// laws) [N m].
+inline void write_torsion_springs_vtk(const BodySystem& s, const std::string& path,
+                                      io::VtkFormat format = io::VtkFormat::ascii) {
+  namespace d = grain::io::detail;
+  const std::size_t n = s.torsion_spring_count();
+  d::LegacyVtkFile o(path, format, "torsion_springs", s.time());
+  o.points(n, [&](std::size_t k) {
+    return d::xyz(s.bodies().position[static_cast<std::size_t>(s.torsion_link(k).body1)]);
+  });
+  o.vertices(n);
+  if (n == 0) return o.close(path);
+  o.line("POINT_DATA " + std::to_string(n));
+  o.field("torsion_spring", n, [](std::size_t k) { return static_cast<int>(k); });
+  o.field("torque", n, [&](std::size_t k) { return d::xyz(s.torsion_result(k).torque); });
+  o.field("xdir", n, [&](std::size_t k) { return d::xyz(s.torsion_result(k).x); });
+  o.field("ydir", n, [&](std::size_t k) { return d::xyz(s.torsion_result(k).y); });
+  o.field("zdir", n, [&](std::size_t k) { return d::xyz(s.torsion_result(k).z); });
+  o.field("roll", n, [&](std::size_t k) { return s.torsion_result(k).angles[0]; });
+  o.field("pitch", n, [&](std::size_t k) { return s.torsion_result(k).angles[1]; });
+  o.field("yaw", n, [&](std::size_t k) { return s.torsion_result(k).angles[2]; });
+  o.field("spring_torque", n,
+          [&](std::size_t k) { return d::xyz(s.torsion_result(k).spring_torque); });
+  o.field("total_torque", n,
+          [&](std::size_t k) { return d::xyz(s.torsion_result(k).total_torque); });
+  o.close(path);
+}
+
+/// Output action (for io::every): the bodies file, and the springs, torsion-springs and joints
+/// files if the system has them, numbered 000000, 000001, ..., and their series files.
 struct BodyVtkWriter {
   std::string prefix;
   io::VtkFormat format = io::VtkFormat::ascii;
   int count = 0;
-  std::vector<std::pair<std::string, double>> body_files{}, spring_files{}, joint_files{};
+  std::vector<std::pair<std::string, double>> body_files{}, spring_files{}, torsion_files{},
+      joint_files{};
 
   void operator()(const BodySystem& s) {
     const std::filesystem::path base(prefix);
@@ -389,6 +421,8 @@ struct BodyVtkWriter {
     };
     one("bodies", write_bodies_vtk, body_files);
     if (s.spring_count() > 0) one("springs", write_springs_vtk, spring_files);
+    if (s.torsion_spring_count() > 0)
+      one("torsion_springs", write_torsion_springs_vtk, torsion_files);
     if (s.joint_count() > 0) one("joints", write_joints_vtk, joint_files);
   }
 };
