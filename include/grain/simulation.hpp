@@ -2,8 +2,10 @@
 /// \file simulation.hpp
 /// `Simulation<Shape, Search, Contact, Options...>`: particles, walls, materials and the solution
 /// loop, assembled at compile time with no run-time dispatch. `Options` are optional, in any
-/// order: an integrator from grain::integrate (default velocity Verlet) and a convection model
-/// from grain::convection (default none).
+/// order: an integrator from grain::integrate (default velocity Verlet), a convection model from
+/// grain::convection (default none), a cell-size method (Voronoi conduction), user stages
+/// `grain::stages<S...>` whose hooks run inside the step, and per-particle fields
+/// `grain::fields<F...>` (core/stages.hpp).
 ///
 /// One step, in this order:
 /// 1. (Verlet only) half kick and drift of particles; walls move;
@@ -20,6 +22,8 @@
 /// 7. lifecycle: particles that left the bounding box, entered a sink or reached their
 ///    destruction time are removed (with their contacts), particles whose creation time has come
 ///    are activated; the neighbour list is rebuilt when that happens.
+/// User stages: `begin_step` before 1, `before_search` between 1 and 2, `after_forces` between 4
+/// and 5, `end_of_step` after 7.
 ///
 /// Analyses (`SimulationParams::analysis`): mechanical (no heat), thermo-mechanical (both, every
 /// step; the default when the contact has a conduction model) and thermal (particles never move:
@@ -33,8 +37,10 @@
 #include <grain/conditions/conditions.hpp>
 #include <grain/conditions/regions.hpp>
 #include <grain/conditions/variable_property.hpp>
+#include <grain/contact/frame.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/observer.hpp>
+#include <grain/core/stages.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/integrate/integrators.hpp>
@@ -119,7 +125,8 @@ template <class T>
 struct is_cell_method : std::bool_constant<cells::CellSizeMethod<T>> {};
 template <class T>
 struct is_option
-    : std::bool_constant<integrator_option<T> || convection_option<T> || cells::CellSizeMethod<T>> {};
+    : std::bool_constant<integrator_option<T> || convection_option<T> || cells::CellSizeMethod<T> ||
+                         is_stages<T>::value || is_fields<T>::value> {};
 } // namespace detail
 
 /// Global settings of a simulation.
@@ -174,13 +181,15 @@ class Simulation {
   static_assert((detail::is_option<Options>::value && ...),
                 "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
                 "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
-                "convection model from grain::convection (e.g. convection::RanzMarshall) or a "
-                "cell-size method from grain::cells (e.g. cells::LocalPorosity)");
+                "convection model from grain::convection (e.g. convection::RanzMarshall), a "
+                "cell-size method from grain::cells (e.g. cells::LocalPorosity), a list of user "
+                "stages grain::stages<S...> or a list of per-particle fields grain::fields<F...>");
   static_assert((0 + ... + int(detail::is_integrator<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_convection<Options>::value)) <= 1 &&
-                    (0 + ... + int(detail::is_cell_method<Options>::value)) <= 1,
-                "grain::Simulation: give at most one integrator, one convection model and one "
-                "cell-size method");
+                    (0 + ... + int(detail::is_cell_method<Options>::value)) <= 1 &&
+                    (0 + ... + int(detail::is_stages<Options>::value)) <= 1,
+                "grain::Simulation: give at most one integrator, one convection model, one "
+                "cell-size method and one grain::stages<...> list");
   static_assert((0 + ... + int(detail::is_cell_method<Options>::value)) == 0 ||
                     Contact::needs_cell_radius,
                 "grain::Simulation: a cell-size method is used only by the Voronoi conduction "
@@ -194,6 +203,12 @@ public:
       typename detail::pick<detail::is_convection, convection::None, Options...>::type;
   using CellSizeT =
       typename detail::pick<detail::is_cell_method, cells::GlobalPorosity, Options...>::type;
+  /// The user stages (grain::stages<S...>) and per-particle fields (grain::fields<F...>, those of
+  /// the options first, then those the stages declare).
+  using StageList = typename detail::pick<detail::is_stages, stages<>, Options...>::type;
+  using FieldList =
+      typename detail::all_fields<StageList,
+                                  typename detail::field_options<Options...>::type>::type;
 
 private:
   static_assert(ParticleShape<Shape>,
@@ -359,6 +374,7 @@ private:
     p.inertia.push_back(inertia);
     p.inv_inertia.push_back(s.fixed ? 0.0 : 1.0 / inertia);
     p.material.push_back(s.material);
+    std::apply([](auto&... f) { (f.emplace_back(), ...); }, fields_);
     if (var_pairs_)
       for (auto& o : over_) o.push_back(std::numeric_limits<double>::quiet_NaN());
     if constexpr (thermal) {
@@ -828,9 +844,11 @@ public:
         compute_forces(time_, false);
         history_ = saved;
         wall_history_ = saved_w;
+        call_stages<Hook::after_forces>();
       }
     }
     initialized_ = true;
+    call_stages<Hook::initialize>();
   }
 
   /// Advances one time step.
@@ -841,19 +859,26 @@ public:
     if constexpr (thermal)
       for (auto& w : walls_) w.update_temperature(time_);
     ensure_groups();
+    call_stages<Hook::begin_step>();
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
         integrate_before(dt);
         move_walls(dt);
       }
+      if constexpr (stages_move) {
+        call_stages<Hook::before_search>();
+        ensure_groups();
+      }
       update_neighbors();
       ensure_groups();
       if (heat_on_) maybe_update_cells();
       compute_forces(IntegratorT::drift_before_forces ? time_ + dt : time_, true);
+      call_stages<Hook::after_forces>();
       integrate_after(dt);
       if constexpr (!IntegratorT::drift_before_forces) move_walls(dt);
     } else {
       if constexpr (thermal) static_heat_rates();
+      call_stages<Hook::after_forces>();
     }
     if constexpr (thermal) {
       if (heats()) integrate_temperature(dt);
@@ -867,6 +892,7 @@ public:
     }
     if (lifecycle_due()) lifecycle();
     if (!vprops_.empty()) apply_variable_properties(false);
+    call_stages<Hook::end_of_step>();
     counters_.steps += 1;
     counters_.particle_steps += static_cast<double>(particles_.size());
     counters_.wall_seconds +=
@@ -906,6 +932,9 @@ public:
     ar(p.id, p.position, p.velocity, p.omega, p.orientation, p.force, p.torque, p.radius, p.mass,
        p.inv_mass, p.inertia, p.inv_inertia, p.material);
     if constexpr (thermal) ar(p.temperature, p.heat_rate, p.heat_capacity, p.inv_heat_capacity);
+    std::apply([&](auto&... f) { (ar(f), ...); }, fields_);
+    // stages with state to keep across a restart visit it themselves
+    std::apply([&](auto&... st) { (serialize_stage(st, ar), ...); }, stages_);
     for (auto& w : walls_)
       ar(w.geometry, w.snapshot, w.pivot, w.options.velocity, w.options.omega, w.temperature);
     ar(list_.offsets, list_.partners, list_.wall_offsets, list_.walls, list_.max_span);
@@ -917,6 +946,7 @@ public:
     ar(pending_, doomed_, removed_ids_);
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     if constexpr (Archive::reading) {
+      wall_loads_.assign(list_.walls.size(), WallLoad{});
       origin_.clear();
       groups_dirty_ = true;
       if (var_pairs_) refresh_pair_cache();
@@ -942,6 +972,77 @@ public:
   double end_time() const { return std::max(end_time_, time_); }
   double skin() const { return skin_; }
   const RunCounters& counters() const { return counters_; }
+
+  // ---------------------------------------------------------------- stages and fields
+  /// The object of user stage S (one of the grain::stages<...> option): set its parameters
+  /// before a run, read its results after one.
+  template <class S>
+  S& stage() {
+    static_assert(has_stage<S>(), "Simulation::stage<S>(): S is not one of this simulation's "
+                                  "stages; add it to the grain::stages<...> option");
+    return std::get<S>(stages_);
+  }
+  template <class S>
+  const S& stage() const {
+    static_assert(has_stage<S>(), "Simulation::stage<S>(): S is not one of this simulation's "
+                                  "stages; add it to the grain::stages<...> option");
+    return std::get<S>(stages_);
+  }
+  /// The per-particle field F (current particle order; F{} for new particles).
+  template <class F>
+  std::vector<F>& field() {
+    static_assert(FieldStore::template contains<F>,
+                  "Simulation::field<F>(): F is not a field of this simulation; add "
+                  "grain::fields<F> to its options or declare it in a stage's `using fields = "
+                  "grain::fields<...>`");
+    return std::get<std::vector<F>>(fields_);
+  }
+  template <class F>
+  const std::vector<F>& field() const {
+    static_assert(FieldStore::template contains<F>,
+                  "Simulation::field<F>(): F is not a field of this simulation; add "
+                  "grain::fields<F> to its options or declare it in a stage's `using fields = "
+                  "grain::fields<...>`");
+    return std::get<std::vector<F>>(fields_);
+  }
+
+  // ---------------------------------------------------------------- wall loads
+  /// Force the particles exert on wall w at the last force evaluation [N] (the sum of the
+  /// reactions of its contacts; summed in list order, so the same bits for any thread count).
+  /// Zero before the first step.
+  V wall_force(std::size_t w) const {
+    check_wall(w, "wall_force");
+    V f = V::Zero();
+    for (std::size_t e = 0; e < wall_loads_.size(); ++e)
+      if (list_.walls[e] == w) f -= wall_loads_[e].force;
+    return f;
+  }
+  /// Torque the particles exert on wall w about its pivot at the last force evaluation [N m]
+  /// (forces at the contact points plus the couples of rolling resistance).
+  A wall_torque(std::size_t w) const {
+    check_wall(w, "wall_torque");
+    A t = zero<A>();
+    const V& c = walls_[w].pivot;
+    for (std::size_t e = 0; e < wall_loads_.size(); ++e)
+      if (list_.walls[e] == w) {
+        const auto& l = wall_loads_[e];
+        t -= cross(V(l.point - c), l.force) + l.couple;
+      }
+    return t;
+  }
+  /// Visits every touching particle-wall contact of the last force evaluation with the forces
+  /// that were applied: f(i, w, point, force_on_wall) (point [m], force [N]); used to spread the
+  /// load of a wall over its nodes.
+  template <class F>
+  void for_each_wall_load(F&& f) const {
+    for (std::size_t i = 0; i + 1 < list_.wall_offsets.size(); ++i)
+      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+        if (e >= wall_loads_.size()) return;
+        const auto& l = wall_loads_[e];
+        if (l.force == V::Zero()) continue;
+        f(i, static_cast<std::size_t>(list_.walls[e]), std::as_const(l.point), V(-l.force));
+      }
+  }
   std::size_t size() const { return particles_.size(); }
 
   /// Current index of the particle with this id (particles are re-sorted by the cell list).
@@ -1014,10 +1115,15 @@ public:
     initialized_ = false;
   }
 
+  /// The view of one contact that for_each_contact passes to a one-argument callable.
+  using ContactViewType = ContactView<D, typename Contact::template Result<D>, History>;
+
   /// Visits every touching contact: f(i, j_or_wall, is_wall, geometry, result), or, if f takes a
   /// sixth argument, also the heat rate into particle i through the contact [W] (0 without heat
-  /// conduction or across an insulated wall). The contact models are evaluated on copies of the
-  /// histories, so the state is not changed.
+  /// conduction or across an insulated wall), or, if f takes one argument, a `ContactView`
+  /// (partners, geometry, result, model data, heat rate and the local frame; see
+  /// contact/frame.hpp). The contact models are evaluated on copies of the histories, so the
+  /// state is not changed.
   template <class F>
   void for_each_contact(F&& f) const {
     ContactGeometry<D> g;
@@ -1026,8 +1132,10 @@ public:
                      History h, double cell_radius) {
       auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
       using R = decltype(r);
-      if constexpr (std::is_invocable_v<F&, std::size_t, std::size_t, bool,
-                                        const ContactGeometry<D>&, const R&, double>) {
+      constexpr bool view = std::is_invocable_v<F&, const ContactViewType&>;
+      if constexpr (view || std::is_invocable_v<F&, std::size_t, std::size_t, bool,
+                                                const ContactGeometry<D>&, const R&, double>) {
+        (void)cell_radius;
         double q = 0.0;
         if constexpr (thermal) {
           const double tj = wall ? walls_[j].temperature : p.temperature[j];
@@ -1037,7 +1145,10 @@ public:
             q = H * (tj - p.temperature[i]);
           }
         }
-        f(i, j, wall, std::as_const(g), std::as_const(r), q);
+        if constexpr (view)
+          f(ContactViewType{i, j, wall, g, r, h, q, ContactFrame<D>::from_normal(g.normal)});
+        else
+          f(i, j, wall, std::as_const(g), std::as_const(r), q);
       } else {
         (void)cell_radius;
         f(i, j, wall, std::as_const(g), std::as_const(r));
@@ -1365,6 +1476,7 @@ private:
       if (params_.search.sort && n > 1) {
         perm = search::detail::cell_order(p, 2.0 * r_max_ + reach);
         p.permute(perm);
+        permute_fields(perm);
         if (var_pairs_)
           for (auto& o : over_) permute_values(o, perm);
         if (prefilled_) {
@@ -1376,6 +1488,7 @@ private:
     } else {
       search::detail::build_all_pairs(p, walls_, reach, list_);
     }
+    if constexpr (FieldStore::template contains<ClumpMember>) drop_clump_internal_pairs();
     // carry the histories of the old list over, by particle identity (origin_ maps the indices
     // after a removal or activation to those of the old list)
     if constexpr (!Contact::template stateless<D>) {
@@ -1415,6 +1528,7 @@ private:
       }
     }
     snapshot_ = p.position;
+    wall_loads_.assign(list_.walls.size(), WallLoad{});
     // reach of a plane rotation: farthest particle from any wall pivot
     reach_ = 0.0;
     for (const auto& w : walls_) {
@@ -1739,6 +1853,7 @@ private:
       const auto w = list_.walls[e];
       if (!touching_wall(i, w, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) wall_history_[e] = History{};
+        wall_loads_[e] = WallLoad{};
         if constexpr (Contact::indirect) {
           if (heat && walls_[w].conducts())
             p.heat_rate[i] +=
@@ -1754,7 +1869,12 @@ private:
       History& h = hist(wall_history_, e);
       auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
       p.force[i] += r.force;
-      if constexpr (Contact::has_torque) p.torque[i] += r.torque_i;
+      if constexpr (Contact::has_torque) {
+        p.torque[i] += r.torque_i;
+        wall_loads_[e] = {r.force, g.point, A(r.torque_i - cross(g.arm_i, r.force))};
+      } else {
+        wall_loads_[e] = {r.force, g.point, zero<A>()};
+      }
       if (track) {
         work += r.force.dot(vf[i] - walls_[w].velocity_at(g.point));
         if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]);
@@ -1946,7 +2066,7 @@ private:
     const long n = static_cast<long>(p.size());
     const bool control = cond_.any_control();
     if constexpr (predicts_velocity) {
-      if (!control && !mass_damping_) {
+      if (!control && !mass_damping_ && !stages_move) {
         fused_before(dt);
         return;
       }
@@ -2106,6 +2226,7 @@ private:
         return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
       });
       p.permute(kept);
+      permute_fields(kept);
       if (var_pairs_)
         for (auto& o : over_) permute_values(o, kept);
     }
@@ -2142,6 +2263,91 @@ private:
       if (analysis() == Analysis::thermal) store_conductances();
   }
   static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+
+  // ---------------------------------------------------------------- stages and fields
+  using StageTuple = typename detail::stage_tuple<StageList>::type;
+  using FieldStore = detail::field_tuple<FieldList>;
+  enum class Hook { initialize, begin_step, before_search, after_forces, end_of_step };
+
+  template <class S>
+  static constexpr bool has_stage() {
+    return []<class... Ss>(stages<Ss...>) { return (std::is_same_v<S, Ss> || ...); }(StageList{});
+  }
+  /// True if a stage moves particles or walls between the drift and the search: the fused
+  /// velocity-Verlet pass (which measures displacements and predicts velocities before it) is
+  /// then not used.
+  static constexpr bool stages_move = []<class... Ss>(stages<Ss...>) {
+    return (detail::moves_in_stage<Ss, Simulation> || ...);
+  }(StageList{});
+
+  /// Calls hook H of every stage that has it, in list order.
+  template <Hook H>
+  void call_stages() {
+    static_assert(
+        []<class... Ss>(stages<Ss...>) {
+          return (detail::stage_for<Ss, Simulation> && ...);
+        }(StageList{}),
+        "grain::stages<...>: each stage needs at least one hook taking the simulation "
+        "by reference: initialize(sim), begin_step(sim), before_search(sim), "
+        "after_forces(sim) or end_of_step(sim)");
+    std::apply([this](auto&... s) { (call_stage<H>(s), ...); }, stages_);
+  }
+  template <Hook H, class S>
+  void call_stage(S& s) {
+    if constexpr (H == Hook::initialize) {
+      if constexpr (requires { s.initialize(*this); }) s.initialize(*this);
+    } else if constexpr (H == Hook::begin_step) {
+      if constexpr (requires { s.begin_step(*this); }) s.begin_step(*this);
+    } else if constexpr (H == Hook::before_search) {
+      if constexpr (requires { s.before_search(*this); }) s.before_search(*this);
+    } else if constexpr (H == Hook::after_forces) {
+      if constexpr (requires { s.after_forces(*this); }) s.after_forces(*this);
+    } else {
+      if constexpr (requires { s.end_of_step(*this); }) s.end_of_step(*this);
+    }
+  }
+  template <class S, class Archive>
+  static void serialize_stage(S& s, Archive& ar) {
+    if constexpr (requires { s.serialize(ar); }) s.serialize(ar);
+  }
+  /// Applies a particle permutation (or removal: a shorter perm) to the fields.
+  void permute_fields(const std::vector<std::uint32_t>& perm) {
+    std::apply([&](auto&... f) { (permute_values(f, perm), ...); }, fields_);
+  }
+  /// Removes the pairs of two members of the same clump from the list (rigid: they never act on
+  /// each other). The largest index span is kept (an upper bound is all the chunking needs).
+  void drop_clump_internal_pairs() {
+    const auto& f = std::get<std::vector<ClumpMember>>(fields_);
+    std::uint32_t out = 0, begin = list_.offsets[0];
+    for (std::size_t i = 0; i + 1 < list_.offsets.size(); ++i) {
+      const std::uint32_t end = list_.offsets[i + 1];
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const auto j = list_.partners[e];
+        if (f[i].clump >= 0 && f[i].clump == f[j].clump) continue;
+        list_.partners[out++] = j;
+      }
+      begin = end;
+      list_.offsets[i + 1] = out;
+    }
+    list_.partners.resize(out);
+  }
+  void check_wall(std::size_t w, const char* what) const {
+    if (w >= walls_.size())
+      throw InputError(std::string("Simulation::") + what + ": wall index " + std::to_string(w) +
+                       " is invalid; valid range: [0, " + std::to_string(walls_.size()) + ")");
+  }
+
+  StageTuple stages_{};
+  typename FieldStore::type fields_{};
+  /// What a particle-wall list entry exchanged at the last force evaluation: the force on the
+  /// particle [N], the contact point [m] and the couple on the particle beyond that of the force
+  /// at the point (rolling resistance) [N m]; zero when not touching.
+  struct WallLoad {
+    V force = V::Zero();
+    V point = V::Zero();
+    A couple = zero<A>();
+  };
+  std::vector<WallLoad> wall_loads_;
 
   Params params_;
   Shape shape_;

@@ -56,7 +56,7 @@ THERMAL_FIELDS = {"temperature": (1, 1, False), "heat_rate": (1, 1, False),
                   "heat_capacity": (1, 1, False)}
 FILE_NAME = re.compile(r"^(?P<series>.+)_(?P<kind>particles|walls|contacts)_(?P<number>\d{6})\.vtk$")
 CONTACT_FIELDS = {"wall": 1, "id_i": 1, "id_j": 1, "normal_force": 1, "tangential_force": 3,
-                  "overlap": 1, "contact_radius": 1}
+                  "normal": 3, "force_local": 3, "overlap": 1, "contact_radius": 1}
 
 failures = []
 
@@ -478,6 +478,14 @@ def check_contacts(path, frame, contacts, count, thermal):
             check_scalar(where, name, arrays[name].GetTuple1(c), e[name])
         check_vector(where, "tangential_force", arrays["tangential_force"].GetTuple3(c),
                      e["tangential_force"])
+        check_vector(where, "normal", arrays["normal"].GetTuple3(c), e["normal"])
+        # the force in the contact frame: its normal component is minus the repulsion, its
+        # tangential components have the friction force's length (the frame is orthonormal)
+        n, t, local = e["normal"], e["tangential_force"], arrays["force_local"].GetTuple3(c)
+        scale = max(abs(e["normal_force"]), math.sqrt(sum(x * x for x in t)))
+        check_scalar(where, "force_local[0]", local[0], -e["normal_force"], scale)
+        check_scalar(where, "|force_local[1:]|", math.hypot(local[1], local[2]),
+                     math.sqrt(sum(x * x for x in t)), scale)
         ids = cell_point_ids(poly, c)
         if len(ids) != 2 or ids[1] == ids[0]:
             fail(where, f"line points {ids}, expected two distinct points")

@@ -173,7 +173,8 @@ struct Recorder {
         << ", \"id_j\": " << (wall ? -1 : p.id[j]) << ", \"wall\": " << (wall ? long(j) : -1L)
         << ", \"normal_force\": " << num(r.normal.force)
         << ", \"tangential_force\": " << vec<Sim::dimension>(r.tangent.force)
-        << ", \"overlap\": " << num(g.overlap) << ", \"contact_radius\": "
+        << ", \"normal\": " << vec<Sim::dimension>(g.normal) << ", \"overlap\": " << num(g.overlap)
+        << ", \"contact_radius\": "
         << num(C::area_model::radius(g, pair, r.normal, sim.params().contact.area))
         << ", \"heat_rate\": " << num(q) << "}";
       first = false;

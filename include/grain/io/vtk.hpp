@@ -54,9 +54,6 @@
 /// faster to write and to read). Both are legacy VTK "DataFile Version 3.0" polydata, read by
 /// ParaView, VisIt and VTK's vtkPolyDataReader.
 
-#include <grain/core/error.hpp>
-#include <grain/core/vector.hpp>
-#include <grain/walls/walls.hpp>
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -66,6 +63,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <grain/contact/frame.hpp>
+#include <grain/core/error.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/walls/walls.hpp>
 #include <iomanip>
 #include <limits>
 #include <locale>
@@ -408,8 +409,10 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
 /// for a wall contact. Points are the particle centres (in storage order) followed by one point
 /// per wall contact. Cell data: `wall` (-1 for a particle pair, else the wall index), `id_i`,
 /// `id_j` (-1 for a wall), `normal_force` [N] (repulsive positive), `tangential_force` [N]
-/// (vector on i), `overlap` [m], `contact_radius` [m] (as the area model gives it to conduction)
-/// and, in a thermal simulation, `heat_rate` [W] (into i). With a `group` name, only the contacts
+/// (vector on i), `normal` (unit, from i to its partner), `force_local` [N] (the force on i in
+/// the contact frame of contact/frame.hpp: normal, tangent 1, tangent 2; 2D: normal, tangent, 0),
+/// `overlap` [m], `contact_radius` [m] (as the area model gives it to conduction) and, in a
+/// thermal simulation, `heat_rate` [W] (into i). With a `group` name, only the contacts
 /// that touch a particle of the group (the points are still every particle centre).
 template <class Sim>
 void write_contacts_vtk(const Sim& sim, const std::string& path,
@@ -418,7 +421,7 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
   struct Row {
     std::size_t i, j;
     bool wall;
-    grain::Vec<D> point, tangential;
+    grain::Vec<D> point, tangential, direction, local;
     double normal, overlap, radius, heat;
   };
   const auto& p = sim.particles();
@@ -436,7 +439,9 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
     const auto pair = sim.contact_pair(i, j, wall);
     using C = typename Sim::contact_type;
     const double a = C::area_model::radius(g, pair, r.normal, contact.area);
-    rows.push_back({i, j, wall, g.point, r.tangent.force, r.normal.force, g.overlap, a, q});
+    const auto frame = ContactFrame<D>::from_normal(g.normal);
+    rows.push_back({i, j, wall, g.point, r.tangent.force, g.normal, frame.to_local(r.force),
+                    r.normal.force, g.overlap, a, q});
   });
   std::vector<std::size_t> wall_points;
   std::vector<std::array<std::size_t, 2>> lines;
@@ -461,6 +466,8 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
   });
   o.field("normal_force", m, [&](std::size_t c) { return rows[c].normal; });
   o.field("tangential_force", m, [&](std::size_t c) { return detail::xyz(rows[c].tangential); });
+  o.field("normal", m, [&](std::size_t c) { return detail::xyz(rows[c].direction); });
+  o.field("force_local", m, [&](std::size_t c) { return detail::xyz(rows[c].local); });
   o.field("overlap", m, [&](std::size_t c) { return rows[c].overlap; });
   o.field("contact_radius", m, [&](std::size_t c) { return rows[c].radius; });
   if constexpr (Sim::thermal) o.field("heat_rate", m, [&](std::size_t c) { return rows[c].heat; });

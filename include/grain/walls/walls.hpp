@@ -14,12 +14,13 @@
 /// the function is inactive the wall keeps its last temperature. A conducting wall exchanges heat
 /// through its material's conductivity.
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <grain/core/error.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -107,6 +108,26 @@ inline Vec3 closest_on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, con
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
+/// Barycentric coordinates of the projection of p on the segment ab (clamped to it).
+inline std::array<double, 2> barycentric(const std::array<Vec2, 2>& x, const Vec2& p) {
+  const Vec2 e = x[1] - x[0];
+  const double t = std::clamp((p - x[0]).dot(e) / e.squaredNorm(), 0.0, 1.0);
+  return {1.0 - t, t};
+}
+
+/// Barycentric coordinates of the closest point of triangle abc to p.
+inline std::array<double, 3> barycentric(const std::array<Vec3, 3>& x, const Vec3& p) {
+  const Vec3 q = closest_on_triangle(x[0], x[1], x[2], p);
+  const Vec3 e0 = x[1] - x[0], e1 = x[2] - x[0], d = q - x[0];
+  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1);
+  const double d20 = d.dot(e0), d21 = d.dot(e1);
+  const double den = d00 * d11 - d01 * d01;
+  double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+  v = std::clamp(v, 0.0, 1.0);
+  w = std::clamp(w, 0.0, 1.0 - v);
+  return {1.0 - v - w, v, w};
+}
+
 } // namespace detail
 
 /// A wall: its geometry, motion and material.
@@ -122,6 +143,12 @@ struct Wall {
   /// condition); while set, they replace options.velocity / options.omega (0 while inactive).
   std::optional<VectorTimeFunction<D>> velocity_function{};
   std::optional<AngularTimeFunction<D>> omega_function{};
+
+  /// Velocities of the corners (2D: a, b of a segment; 3D: a, b, c of a triangle) of a wall whose
+  /// corners move independently (a multi-node facet, walls/facets.hpp) [m/s]: when set, the
+  /// surface velocity at a point is their barycentric interpolation, and `options.velocity` and
+  /// `options.omega` are not used.
+  std::optional<std::array<Vec<D>, D>> node_velocity{};
 
   /// Sets the current velocities at time t [s] from the velocity functions, if any.
   void update_motion(double t) {
@@ -148,6 +175,8 @@ struct Wall {
 
   /// Velocity of the wall surface at point p [m/s].
   Vec<D> velocity_at(const Vec<D>& p) const {
+    if (node_velocity) [[unlikely]]
+      return interpolated_velocity(p);
     return options.velocity + cross(options.omega, Vec<D>(p - pivot));
   }
 
@@ -257,6 +286,23 @@ struct Wall {
   }
 
 private:
+  /// Barycentric interpolation of node_velocity at the point of the segment / triangle closest
+  /// to p.
+  Vec<D> interpolated_velocity(const Vec<D>& p) const {
+    const auto& u = *node_velocity;
+    if constexpr (D == 2) {
+      const auto* s = std::get_if<walls::Segment>(&geometry);
+      if (!s) return options.velocity;
+      const auto l = detail::barycentric(std::array<Vec2, 2>{s->a, s->b}, p);
+      return l[0] * u[0] + l[1] * u[1];
+    } else {
+      const auto* t = std::get_if<walls::Triangle>(&geometry);
+      if (!t) return options.velocity;
+      const auto l = detail::barycentric(std::array<Vec3, 3>{t->a, t->b, t->c}, p);
+      return l[0] * u[0] + l[1] * u[1] + l[2] * u[2];
+    }
+  }
+
   static WallProximity<2> proximity_of(const walls::Segment& s, const Vec2& x) {
     const Vec2 q = detail::closest_on_segment(s.a, s.b, x);
     Vec2 d = q - x;

@@ -1,0 +1,320 @@
+#pragma once
+/// \file union_mass.hpp
+/// Volume, centroid and second moments of a union of overlapping spheres (3D) or disks (2D),
+/// the mass properties of a clump (overlaps counted once).
+///
+/// 3D: the moments int_U {1, x, y, z, x^2, y^2, z^2, xy, xz, yz} dV are integrated as
+///
+///     int dx int dy int_{U(x, y)} dz,
+///
+/// the inner integral exactly over the union U(x, y) of the z-intervals the spheres cut from the
+/// line (x, y); the two outer ones piecewise with Gauss-Legendre rules after the substitution
+/// s = a + (b - a)(1 - cos t)/2, which takes away the square-root behaviour of the integrand at
+/// the ends of a piece. The pieces end where the integrand stops being analytic: in x at the
+/// ends of the spheres, at the x-extents of the circles in which two spheres meet and at the points
+/// common to three spheres; in y (for a slice x) at the ends of the slice circles and at their
+/// pairwise intersections. Within a piece the integrand is analytic, so the rule converges fast:
+/// a single sphere and a union of two spheres come out to round-off (tests: 1e-12).
+///
+/// 2D: int_U {1, x, y, x^2, y^2, xy} dA, the inner integral exact over y-intervals, the outer one
+/// piecewise in x (ends of the disks and their pairwise intersections).
+///
+/// Units: lengths in m; volume m^3 (area m^2 in 2D); the inertia is returned per unit density,
+/// J / rho = int (|r|^2 I - r r^T) dV about the centroid [m^5] (2D: the polar moment
+/// int |r|^2 dA [m^4]).
+
+#include <grain/core/error.hpp>
+#include <grain/core/vector.hpp>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace grain {
+
+/// Mass properties per unit density of a union of spheres or disks.
+template <int D>
+struct UnionMoments {
+  double measure = 0.0;             ///< volume [m^3] (3D) or area [m^2] (2D)
+  Vec<D> centroid = Vec<D>::Zero(); ///< [m]
+  /// 3D: the inertia tensor per unit density about the centroid [m^5]; 2D: the polar moment of
+  /// area about the centroid [m^4].
+  std::conditional_t<D == 3, Eigen::Matrix3d, double> inertia{};
+};
+
+namespace detail {
+
+/// Gauss-Legendre nodes and weights on [-1, 1] (Newton iteration on P_n).
+template <int N>
+const std::pair<std::array<double, N>, std::array<double, N>>& gauss_legendre() {
+  static const auto rule = [] {
+    std::pair<std::array<double, N>, std::array<double, N>> r{};
+    for (int i = 0; i < N; ++i) {
+      double x = std::cos(std::numbers::pi * (i + 0.75) / (N + 0.5));
+      double dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = x;
+        for (int k = 2; k <= N; ++k) {
+          const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = N * (x * p1 - p0) / (x * x - 1.0);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::abs(dx) < 1e-16) break;
+      }
+      r.first[static_cast<std::size_t>(i)] = x;
+      r.second[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+    return r;
+  }();
+  return rule;
+}
+
+/// Sum of f(s) w over [a, b] after s = a + (b - a)(1 - cos t)/2, t in [0, pi] (f: s -> adds its
+/// own weighted contribution through the callback `add(s, weight)`).
+template <int N, class Add>
+void cosine_panel(double a, double b, Add&& add) {
+  if (!(b > a)) return;
+  const auto& [x, w] = gauss_legendre<N>();
+  const double half_pi = 0.5 * std::numbers::pi;
+  for (int k = 0; k < N; ++k) {
+    const double t = half_pi * (x[static_cast<std::size_t>(k)] + 1.0);
+    const double s = a + 0.5 * (b - a) * (1.0 - std::cos(t));
+    add(s, w[static_cast<std::size_t>(k)] * half_pi * 0.5 * (b - a) * std::sin(t));
+  }
+}
+
+/// Moments int_{union of [lo, hi]} {1, z, z^2} dz of a set of intervals (sorted and merged here).
+inline std::array<double, 3> interval_union_moments(std::vector<std::pair<double, double>>& iv) {
+  std::sort(iv.begin(), iv.end());
+  std::array<double, 3> m{0.0, 0.0, 0.0};
+  std::size_t k = 0;
+  while (k < iv.size()) {
+    double lo = iv[k].first, hi = iv[k].second;
+    ++k;
+    while (k < iv.size() && iv[k].first <= hi)
+      hi = std::max(hi, iv[k++].second);
+    m[0] += hi - lo;
+    m[1] += 0.5 * (hi * hi - lo * lo);
+    m[2] += (hi * hi * hi - lo * lo * lo) / 3.0;
+  }
+  return m;
+}
+
+/// The interior breakpoints of [a, b] from a list, sorted and with duplicates removed.
+inline std::vector<double> pieces(double a, double b, std::vector<double> cuts) {
+  cuts.push_back(a);
+  cuts.push_back(b);
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<double> out;
+  const double tol = 1e-14 * (b - a);
+  for (double c : cuts) {
+    if (c < a || c > b) continue;
+    if (out.empty() || c - out.back() > tol) out.push_back(c);
+  }
+  out.back() = b;
+  return out;
+}
+
+/// y-coordinates of the intersection points of two circles (centres p, q, radii r, s).
+template <class V2>
+void circle_intersections_y(const V2& p, double r, const V2& q, double s, std::vector<double>& out,
+                            int coordinate) {
+  const V2 d = q - p;
+  const double L = d.norm();
+  if (!(L > 0.0) || L >= r + s || L <= std::abs(r - s)) return;
+  const double a = (r * r - s * s + L * L) / (2.0 * L);
+  const double h = std::sqrt(std::max(r * r - a * a, 0.0));
+  const V2 m = p + (a / L) * d;
+  const V2 n(-d[1] / L, d[0] / L);
+  out.push_back((m + h * n)[coordinate]);
+  out.push_back((m - h * n)[coordinate]);
+}
+
+template <class V>
+void check_members(const std::string& object, const std::vector<V>& centres,
+                   const std::vector<double>& radii) {
+  if (centres.empty())
+    throw InputError(object + ": members = 0 is invalid; valid range: at least one sphere or disk");
+  if (centres.size() != radii.size())
+    throw InputError(object + ": radii = " + std::to_string(radii.size()) +
+                     " values is invalid; valid: one radius per member centre (" +
+                     std::to_string(centres.size()) + ")");
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    const std::string member = object + " (member " + std::to_string(k) + ")";
+    detail::require_positive(member, "radius", radii[k]);
+    detail::require(centres[k].allFinite(), member, "centre", centres[k].transpose(),
+                    "finite coordinates [m]");
+  }
+}
+
+} // namespace detail
+
+/// Volume, centroid and inertia per unit density of the union of spheres (centres c_k, radii
+/// r_k) [m]. Throws InputError for no members, a radius that is not > 0 or a non-finite centre.
+inline UnionMoments<3> union_moments(const std::vector<Vec3>& centres,
+                                     const std::vector<double>& radii,
+                                     const std::string& object = "clump") {
+  detail::check_members(object, centres, radii);
+  const std::size_t n = centres.size();
+  // x pieces: sphere ends, x-extents of pairwise intersection circles, triple points
+  double x0 = 1e300, x1 = -1e300;
+  std::vector<double> cuts;
+  for (std::size_t i = 0; i < n; ++i) {
+    x0 = std::min(x0, centres[i].x() - radii[i]);
+    x1 = std::max(x1, centres[i].x() + radii[i]);
+    cuts.push_back(centres[i].x() - radii[i]);
+    cuts.push_back(centres[i].x() + radii[i]);
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const Vec3 d = centres[j] - centres[i];
+      const double L = d.norm();
+      const double ri = radii[i], rj = radii[j];
+      if (!(L > 0.0) || L >= ri + rj || L <= std::abs(ri - rj)) continue;
+      const Vec3 u = d / L;
+      const double a = (ri * ri - rj * rj + L * L) / (2.0 * L);
+      const double rho = std::sqrt(std::max(ri * ri - a * a, 0.0));
+      const double px = centres[i].x() + a * u.x();
+      const double ext = rho * std::sqrt(std::max(1.0 - u.x() * u.x(), 0.0));
+      cuts.push_back(px - ext);
+      cuts.push_back(px + ext);
+      for (std::size_t k = j + 1; k < n; ++k) {
+        // points common to spheres i, j, k (trilateration in the frame of i, j, k)
+        const Vec3 e1 = u;
+        const Vec3 dk = centres[k] - centres[i];
+        const double ix = e1.dot(dk);
+        Vec3 e2 = dk - ix * e1;
+        const double e2n = e2.norm();
+        if (!(e2n > 1e-14 * L)) continue;
+        e2 /= e2n;
+        const Vec3 e3 = e1.cross(e2);
+        const double jy = e2.dot(dk);
+        const double rk = radii[k];
+        const double x = (ri * ri - rj * rj + L * L) / (2.0 * L);
+        const double y = (ri * ri - rk * rk + ix * ix + jy * jy) / (2.0 * jy) - ix / jy * x;
+        const double z2 = ri * ri - x * x - y * y;
+        if (z2 < 0.0) continue;
+        const double z = std::sqrt(z2);
+        cuts.push_back((centres[i] + x * e1 + y * e2 + z * e3).x());
+        cuts.push_back((centres[i] + x * e1 + y * e2 - z * e3).x());
+      }
+    }
+  }
+  const auto xs = detail::pieces(x0, x1, cuts);
+  std::array<double, 10> m{}; // 1, x, y, z, xx, yy, zz, xy, xz, yz
+  std::vector<std::pair<double, double>> iv;
+  std::vector<std::pair<Vec2, double>> circles;
+  std::vector<double> ycuts;
+  for (std::size_t p = 0; p + 1 < xs.size(); ++p) {
+    detail::cosine_panel<24>(xs[p], xs[p + 1], [&](double x, double wx) {
+      circles.clear();
+      ycuts.clear();
+      double y0 = 1e300, y1 = -1e300;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double dx = x - centres[i].x();
+        const double r2 = radii[i] * radii[i] - dx * dx;
+        if (r2 <= 0.0) continue;
+        const double rho = std::sqrt(r2);
+        const Vec2 c(centres[i].y(), centres[i].z());
+        for (const auto& [q, s] : circles)
+          detail::circle_intersections_y(c, rho, q, s, ycuts, 0);
+        circles.push_back({c, rho});
+        ycuts.push_back(c.x() - rho);
+        ycuts.push_back(c.x() + rho);
+        y0 = std::min(y0, c.x() - rho);
+        y1 = std::max(y1, c.x() + rho);
+      }
+      if (circles.empty()) return;
+      const auto ys = detail::pieces(y0, y1, ycuts);
+      for (std::size_t q = 0; q + 1 < ys.size(); ++q) {
+        detail::cosine_panel<24>(ys[q], ys[q + 1], [&](double y, double wy) {
+          iv.clear();
+          for (const auto& [c, rho] : circles) {
+            const double dy = y - c.x();
+            const double h2 = rho * rho - dy * dy;
+            if (h2 > 0.0) {
+              const double h = std::sqrt(h2);
+              iv.push_back({c.y() - h, c.y() + h});
+            }
+          }
+          if (iv.empty()) return;
+          const auto z = detail::interval_union_moments(iv);
+          const double w = wx * wy;
+          m[0] += w * z[0];
+          m[1] += w * x * z[0];
+          m[2] += w * y * z[0];
+          m[3] += w * z[1];
+          m[4] += w * x * x * z[0];
+          m[5] += w * y * y * z[0];
+          m[6] += w * z[2];
+          m[7] += w * x * y * z[0];
+          m[8] += w * x * z[1];
+          m[9] += w * y * z[1];
+        });
+      }
+    });
+  }
+  UnionMoments<3> u;
+  u.measure = m[0];
+  u.centroid = Vec3(m[1], m[2], m[3]) / m[0];
+  Eigen::Matrix3d s; // int r r^T about the centroid
+  s << m[4], m[7], m[8], m[7], m[5], m[9], m[8], m[9], m[6];
+  s -= m[0] * u.centroid * u.centroid.transpose();
+  u.inertia = s.trace() * Eigen::Matrix3d::Identity() - s;
+  return u;
+}
+
+/// Area, centroid and polar moment of area of the union of disks (centres c_k, radii r_k) [m].
+inline UnionMoments<2> union_moments(const std::vector<Vec2>& centres,
+                                     const std::vector<double>& radii,
+                                     const std::string& object = "clump") {
+  detail::check_members(object, centres, radii);
+  const std::size_t n = centres.size();
+  double x0 = 1e300, x1 = -1e300;
+  std::vector<double> cuts;
+  for (std::size_t i = 0; i < n; ++i) {
+    x0 = std::min(x0, centres[i].x() - radii[i]);
+    x1 = std::max(x1, centres[i].x() + radii[i]);
+    cuts.push_back(centres[i].x() - radii[i]);
+    cuts.push_back(centres[i].x() + radii[i]);
+    for (std::size_t j = 0; j < i; ++j)
+      detail::circle_intersections_y(centres[i], radii[i], centres[j], radii[j], cuts, 0);
+  }
+  const auto xs = detail::pieces(x0, x1, cuts);
+  std::array<double, 6> m{}; // 1, x, y, xx, yy, xy
+  std::vector<std::pair<double, double>> iv;
+  for (std::size_t p = 0; p + 1 < xs.size(); ++p) {
+    detail::cosine_panel<32>(xs[p], xs[p + 1], [&](double x, double w) {
+      iv.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        const double dx = x - centres[i].x();
+        const double h2 = radii[i] * radii[i] - dx * dx;
+        if (h2 > 0.0) {
+          const double h = std::sqrt(h2);
+          iv.push_back({centres[i].y() - h, centres[i].y() + h});
+        }
+      }
+      if (iv.empty()) return;
+      const auto y = detail::interval_union_moments(iv);
+      m[0] += w * y[0];
+      m[1] += w * x * y[0];
+      m[2] += w * y[1];
+      m[3] += w * x * x * y[0];
+      m[4] += w * y[2];
+      m[5] += w * x * y[1];
+    });
+  }
+  UnionMoments<2> u;
+  u.measure = m[0];
+  u.centroid = Vec2(m[1], m[2]) / m[0];
+  u.inertia = m[3] + m[4] - m[0] * u.centroid.squaredNorm();
+  return u;
+}
+
+} // namespace grain

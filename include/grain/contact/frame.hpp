@@ -1,0 +1,91 @@
+#pragma once
+/// \file frame.hpp
+/// The local frame of a contact and a view of one contact for stages and output.
+///
+/// `ContactFrame<D>` is an orthonormal, right-handed frame built from the contact normal n
+/// (unit, from particle i towards its partner): in 2D (n, t) with t = (-n_y, n_x); in 3D
+/// (n, t1, t2) with t1 x t2 = n, built without branches on the normal's direction except its
+/// sign (Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin, "Building an orthonormal
+/// basis, revisited", J. Computer Graphics Techniques 6(1), 2017). The tangents depend only on
+/// n, so a contact keeps its frame while its normal does not turn.
+///
+/// `ContactView` bundles, separately: the partners (i, j, wall or not), the geometry
+/// (`ContactGeometry`: normal, overlap, point, relative velocities), the physics result (force
+/// and torques on i in global components, and through the frame in local ones), the model data
+/// (the per-contact history of the models in use: `data.normal`, `data.tangent`, `data.rolling`,
+/// `data.conduction`, `data.area`) and the heat rate into i [W]. `Simulation::for_each_contact`
+/// passes one to a callable that takes a single argument.
+
+#include <cmath>
+#include <cstddef>
+#include <grain/contact/geometry.hpp>
+#include <grain/core/vector.hpp>
+
+namespace grain {
+
+template <int D>
+struct ContactFrame;
+
+/// 2D contact frame: normal n and tangent t = (-n_y, n_x) (t is n turned by +90 degrees).
+template <>
+struct ContactFrame<2> {
+  Vec2 normal = Vec2::UnitX();
+  Vec2 tangent = Vec2::UnitY();
+
+  static ContactFrame from_normal(const Vec2& n) { return {n, Vec2(-n.y(), n.x())}; }
+  /// Components (normal, tangential) of a global vector.
+  Vec2 to_local(const Vec2& v) const { return {v.dot(normal), v.dot(tangent)}; }
+  /// Global vector of local components (normal, tangential).
+  Vec2 to_global(const Vec2& l) const { return l[0] * normal + l[1] * tangent; }
+  /// A 2D torque is a scalar about the out-of-plane axis: the same in both frames.
+  static double to_local(double torque) { return torque; }
+};
+
+/// 3D contact frame: normal n and tangents t1, t2 with (n, t1, t2) right-handed.
+template <>
+struct ContactFrame<3> {
+  Vec3 normal = Vec3::UnitX();
+  Vec3 tangent1 = Vec3::UnitY();
+  Vec3 tangent2 = Vec3::UnitZ();
+
+  static ContactFrame from_normal(const Vec3& n) {
+    // Duff et al. (2017), listing 3: b1 x b2 = n for the frame (b1, b2, n)
+    const double sign = std::copysign(1.0, n.z());
+    const double a = -1.0 / (sign + n.z());
+    const double b = n.x() * n.y() * a;
+    const Vec3 b1(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+    const Vec3 b2(b, sign + n.y() * n.y() * a, -n.y());
+    return {n, b1, b2};
+  }
+  /// Components (normal, tangent 1, tangent 2) of a global vector.
+  Vec3 to_local(const Vec3& v) const { return {v.dot(normal), v.dot(tangent1), v.dot(tangent2)}; }
+  /// Global vector of local components (normal, tangent 1, tangent 2).
+  Vec3 to_global(const Vec3& l) const { return l[0] * normal + l[1] * tangent1 + l[2] * tangent2; }
+};
+
+/// One touching contact, as `Simulation::for_each_contact` shows it. References are valid only
+/// during the call.
+template <int D, class Result, class History>
+struct ContactView {
+  std::size_t i = 0; ///< particle (current index)
+  std::size_t j = 0; ///< partner particle (current index) or wall index
+  bool wall = false; ///< true if the partner is wall j
+  const ContactGeometry<D>& geometry;
+  const Result& result;   ///< force on i (on j: minus it) [N], torques on i and j [N m], parts
+  const History& data;    ///< per-contact model data after this evaluation
+  double heat_rate = 0.0; ///< heat flow into i through the contact [W] (0 without conduction)
+  ContactFrame<D> frame;
+
+  /// Contact force on i [N], global components.
+  const Vec<D>& force() const { return result.force; }
+  /// Contact force on i [N] in the frame: normal (negative = repulsive, since n points from i
+  /// to the partner) and tangential components.
+  Vec<D> force_local() const { return frame.to_local(result.force); }
+  /// Torque on i [N m] in the frame (3D: normal = twisting, tangential = bending/rolling; 2D: the
+  /// scalar torque).
+  Angular<D> torque_i_local() const { return frame.to_local(result.torque_i); }
+  /// Torque on j [N m] in the frame.
+  Angular<D> torque_j_local() const { return frame.to_local(result.torque_j); }
+};
+
+} // namespace grain
