@@ -8,6 +8,9 @@
 // expected.json records, per series, the options it was written with; per run, every field of
 // every particle, the walls, the contacts and the groups' members at every output.
 //
+// The sphere run has an obstacle (two triangles that move and turn about a reference point): its
+// triangles are walls like the others, so the files show them moving.
+//
 // It also checks the errors: a thermal field asked of a mechanical simulation, an unknown field
 // name and an unknown group are InputErrors that name what is wrong and what is valid, raised
 // before any file is written.
@@ -434,7 +437,21 @@ void spheres(const std::filesystem::path& dir, std::string& runs, std::string& s
   sim.add_wall(grain::walls::Triangle{{0.05, -0.05, 0.03}, {0.15, -0.045, 0.031},
                                       {0.1, 0.05, 0.0295}},
                tilted);
-  // 4 touches 20 and the floor; 20, 9 and 15 have contacts without 4 or 1
+  // an obstacle: a square of two triangles that moves and turns about its reference point; 1
+  // rests on it exactly over the shared diagonal (one contact)
+  grain::add_obstacle(sim,
+                      grain::walls::TriangleMesh{{{-0.03, -0.08, 0.0409},
+                                                  {0.01, -0.08, 0.0409},
+                                                  {0.01, -0.04, 0.0409},
+                                                  {-0.03, -0.04, 0.0409}},
+                                                 {{0, 1, 2}, {0, 2, 3}}},
+                      {.name = "tray",
+                       .material = m,
+                       .reference_point = {-0.01, -0.06, 0.0409},
+                       .velocity = grain::Vec3(0.002, 0.0, 0.001),
+                       .omega = grain::Vec3(0.0, 0.0, 2.0),
+                       .temperature = 330.0});
+  // 4 touches 20 and the floor; 20, 9 and 15 have contacts without 4 or 1; 1 touches the tray
   sim.add_group("pair", {4, 1});
   sim.add_group("nobody", {});
   run_series(sim, dir, "spheres", runs, series, ok);

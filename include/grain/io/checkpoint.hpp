@@ -83,6 +83,7 @@ void serialize_fields(Ar& ar, walls::Plane& g) {
 template <class Ar>
 void serialize_fields(Ar& ar, walls::Triangle& g) {
   ar(g.a, g.b, g.c);
+  if (g.mesh) ar(g.origin, g.orientation); // an obstacle's pose (its mesh is set-up)
 }
 
 /// Reads (Reading = true) or writes every item given to it.
@@ -148,7 +149,8 @@ public:
       raw(k);
       if constexpr (Reading) {
         if (k >= std::variant_size_v<T>) corrupt("variant index");
-        emplace<T>(x, k, std::make_index_sequence<std::variant_size_v<T>>{});
+        // an alternative of the right kind keeps what the set-up gave it (a triangle's mesh)
+        if (k != x.index()) emplace<T>(x, k, std::make_index_sequence<std::variant_size_v<T>>{});
       }
       std::visit([&](auto& v) { item(v); }, x);
     } else if constexpr (requires { x.serialize(*this); }) {

@@ -124,7 +124,7 @@ template <int D>
 void build_wall_rows(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
                      NeighborList& list, std::size_t i) {
   for (std::uint32_t w = 0; w < walls.size(); ++w) {
-    const auto prox = walls[w].proximity(p.position[i]);
+    const auto prox = walls[w].nearest(p.position[i]); // a mesh triangle's own nearest point
     if (prox.distance < p.radius[i] + reach) list.walls.push_back(w);
   }
   list.wall_offsets.push_back(static_cast<std::uint32_t>(list.walls.size()));

@@ -703,7 +703,7 @@ struct VoronoiDiagram {
     std::vector<WallPlane<D>> planes(nl.walls.size());
     for (std::size_t i = 0; i + 1 < nl.wall_offsets.size(); ++i)
       for (auto e = nl.wall_offsets[i]; e < nl.wall_offsets[i + 1]; ++e) {
-        const auto prox = walls[nl.walls[e]].proximity(x[i]);
+        const auto prox = walls[nl.walls[e]].nearest(x[i]);
         planes[e].normal = -prox.normal;
         planes[e].point = x[i] + prox.distance * prox.normal;
       }

@@ -9,19 +9,30 @@
 /// its surface velocity (a rotating drum). Wall velocities are constant in time here; time
 /// functions are added by the conditions layer.
 ///
+/// A triangle may belong to an obstacle (see walls/obstacle.hpp): a triangle mesh that moves
+/// rigidly. Such a triangle carries the obstacle's shared `MeshFeatures` and its pose (the
+/// position of the reference point and the rotation from the body frame), moves with the pose
+/// (its corners are the body-frame corners rotated and shifted, so the shape never drifts) and
+/// reports only the contacts that are its own (see walls/mesh_features.hpp): each contact with
+/// the mesh is counted once. `nearest` is the triangle's own nearest point, for the neighbour
+/// search. A triangle without mesh (the default) is a lone triangle, touched at its face, edges
+/// and corners.
+///
 /// Thermally a wall is insulated (the default: no heat crosses it) or held at a temperature [K]
 /// given as a `TimeFunction` (a constant, a ramp, a table...). It has no thermal inertia: while
 /// the function is inactive the wall keeps its last temperature. A conducting wall exchanges heat
 /// through its material's conductivity.
 
+#include <grain/core/error.hpp>
+#include <grain/core/time_function.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/walls/mesh_features.hpp>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <grain/core/error.hpp>
-#include <grain/core/time_function.hpp>
-#include <grain/core/vector.hpp>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -47,6 +58,15 @@ struct Plane {
 /// 3D triangle with corners a, b, c; touched from either side, at edges and corners.
 struct Triangle {
   Vec3 a = Vec3::Zero(), b = Vec3::UnitX(), c = Vec3::UnitY();
+  /// Set for a triangle of an obstacle (by add_obstacle): the obstacle's mesh features, shared by
+  /// its triangles, and this triangle's face index in them. Null: a lone triangle.
+  std::shared_ptr<const MeshFeatures> mesh{};
+  std::uint32_t face = 0;
+  /// Pose of the obstacle (used with `mesh`): the current position of its reference point [m]
+  /// and the rotation from the body frame to the world; a world point x is y = R^T (x - origin)
+  /// in the body frame.
+  Vec3 origin = Vec3::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
 };
 
 } // namespace walls
@@ -168,9 +188,20 @@ struct Wall {
 
   static constexpr double inf = std::numeric_limits<double>::infinity();
 
-  /// Normal, distance and curvature seen from a particle centre x.
+  /// Normal, distance and curvature seen from a particle centre x. A triangle of an obstacle
+  /// that does not report the contact (another triangle of the mesh does, or the nearest
+  /// feature is one the mesh covers otherwise) gives an infinite distance.
   WallProximity<D> proximity(const Vec<D>& x) const {
     return std::visit([&](const auto& g) { return proximity_of(g, x); }, geometry);
+  }
+
+  /// The nearest point of the wall's own geometry (for a triangle of an obstacle: of this
+  /// triangle alone, whichever triangle reports the contact); the neighbour search and the cell
+  /// diagrams use it. The same as proximity for every other wall.
+  WallProximity<D> nearest(const Vec<D>& x) const {
+    if constexpr (D == 3)
+      if (const auto* t = std::get_if<walls::Triangle>(&geometry)) return nearest_on(*t, x);
+    return proximity(x);
   }
 
   /// Velocity of the wall surface at point p [m/s].
@@ -203,6 +234,15 @@ struct Wall {
           } else if constexpr (std::is_same_v<G, walls::Plane>) {
             g.point = tr(g.point);
             g.normal = rotated(g.normal, w, dt).normalized();
+          } else if (g.mesh) {
+            // the pose moves; the corners follow from it, so the mesh stays rigid
+            g.origin = tr(g.origin);
+            rotate(g.orientation, w, dt);
+            const Eigen::Matrix3d R = g.orientation.toRotationMatrix();
+            const auto& v = g.mesh->face_vertices(g.face);
+            g.a = g.origin + R * g.mesh->vertex(v[0]);
+            g.b = g.origin + R * g.mesh->vertex(v[1]);
+            g.c = g.origin + R * g.mesh->vertex(v[2]);
           } else {
             g.a = tr(g.a);
             g.b = tr(g.b);
@@ -257,6 +297,15 @@ struct Wall {
             detail::require(all_finite(g.a) && all_finite(g.b) && all_finite(g.c), obj,
                             "triangle corners", "(non-finite)", "finite coordinates");
             detail::require_positive(obj, "triangle area", 0.5 * (g.b - g.a).cross(g.c - g.a).norm());
+            if (g.mesh) {
+              detail::require(g.face < g.mesh->face_count(), obj, "mesh face", g.face,
+                              "[0, " + std::to_string(g.mesh->face_count()) + ")");
+              detail::require(all_finite(g.origin), obj, "mesh origin", "(non-finite)",
+                              "finite coordinates");
+              detail::require(std::abs(g.orientation.norm() - 1.0) < 1e-9, obj,
+                              "mesh orientation norm", g.orientation.norm(),
+                              "1 (a unit quaternion)");
+            }
           }
         },
         geometry);
@@ -322,6 +371,13 @@ private:
     return {-p.normal, (x - p.point).dot(p.normal), inf};
   }
   static WallProximity<3> proximity_of(const walls::Triangle& t, const Vec3& x) {
+    if (!t.mesh) return nearest_on(t, x);
+    // the mesh's tests run in the body frame, where all triangles of the obstacle share the data
+    const Vec3 y = t.orientation.conjugate() * Vec3(x - t.origin);
+    const walls::MeshContact c = t.mesh->contact(t.face, y);
+    return {t.orientation * c.normal, c.distance, inf};
+  }
+  static WallProximity<3> nearest_on(const walls::Triangle& t, const Vec3& x) {
     const Vec3 q = detail::closest_on_triangle(t.a, t.b, t.c, x);
     const Vec3 d = q - x;
     const double dist = d.norm();
