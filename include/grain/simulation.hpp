@@ -286,6 +286,11 @@ public:
     for (std::size_t a = 0; a < n0; ++a)
       for (std::size_t b = 0; b < n0; ++b) grown[a * (n0 + 1) + b] = overrides_[a * n0 + b];
     overrides_.swap(grown);
+    std::vector<typename Contact::Params> grown_params((n0 + 1) * (n0 + 1), params_.contact);
+    for (std::size_t a = 0; a < n0; ++a)
+      for (std::size_t b = 0; b < n0; ++b)
+        grown_params[a * (n0 + 1) + b] = pair_params_[a * n0 + b];
+    pair_params_.swap(grown_params);
     materials_.push_back(m);
     update_pairs();
     initialized_ = false;
@@ -299,6 +304,30 @@ public:
     overrides_[a * n + b] = overrides_[b * n + a] = o;
     update_pairs();
     initialized_ = false;
+  }
+
+  /// Contact-model parameters for one pair of materials (either order), replacing
+  /// SimulationParams::contact (the default pair) for the contacts of these materials, particle-
+  /// particle and particle-wall: the table of contact parameters per pair of surface colours of
+  /// the third seed's GRANULAR command, for any contact model. Throws InputError naming the pair
+  /// for invalid parameters or materials.
+  void set_pair_parameters(std::uint32_t a, std::uint32_t b, const typename Contact::Params& p) {
+    check_material(a, "set_pair_parameters");
+    check_material(b, "set_pair_parameters");
+    try {
+      Contact::validate(p);
+    } catch (const InputError& e) {
+      throw InputError("Simulation::set_pair_parameters (materials '" + materials_[a].name +
+                       "' and '" + materials_[b].name + "'): " + e.what());
+    }
+    const auto n = materials_.size();
+    pair_params_[a * n + b] = pair_params_[b * n + a] = p;
+    initialized_ = false;
+  }
+  /// The contact-model parameters of a pair of materials (SimulationParams::contact unless
+  /// set_pair_parameters gave the pair its own).
+  const typename Contact::Params& contact_params(std::size_t a, std::size_t b) const {
+    return pair_params_[a * materials_.size() + b];
   }
 
   /// Adds a particle; returns its id. Throws InputError on bad input. A particle with a creation
@@ -686,11 +715,11 @@ public:
           const double re = rmin[a] * rmin[b] / (rmin[a] + rmin[b]);
           const double me = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
           const double k =
-              Contact::stiffness_estimate(bounding_pair(a, b), params_.contact, re, me, v);
+              Contact::stiffness_estimate(bounding_pair(a, b), contact_params(a, b), re, me, v);
           if (k > 0) t = std::min(t, 2.0 * std::sqrt(me / k));
         }
         if (wall_material[b]) {
-          const double k = Contact::stiffness_estimate(bounding_pair(a, b), params_.contact,
+          const double k = Contact::stiffness_estimate(bounding_pair(a, b), contact_params(a, b),
                                                        rmin[a], mmin[a], v);
           if (k > 0) t = std::min(t, 2.0 * std::sqrt(mmin[a] / k));
         }
@@ -791,7 +820,7 @@ public:
         for (double r : v.vp.table->y()) r_max_ = std::max(r_max_, r);
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
-    cutoff_ = heats() ? Contact::cutoff(params_.contact, r_max_) : 0.0;
+    cutoff_ = heats() ? largest_cutoff() : 0.0;
     for (auto& w : walls_) {
       w.update_temperature(time_);
       w.update_motion(time_);
@@ -1008,40 +1037,25 @@ public:
 
   // ---------------------------------------------------------------- wall loads
   /// Force the particles exert on wall w at the last force evaluation [N] (the sum of the
-  /// reactions of its contacts; summed in list order, so the same bits for any thread count).
-  /// Zero before the first step.
+  /// reactions of its contacts, in list order: the same bits for any thread count). Zero before
+  /// the first step and after loading a checkpoint, until the next step.
   V wall_force(std::size_t w) const {
     check_wall(w, "wall_force");
-    V f = V::Zero();
-    for (std::size_t e = 0; e < wall_loads_.size(); ++e)
-      if (list_.walls[e] == w) f -= wall_loads_[e].force;
-    return f;
+    return w < wall_force_sum_.size() ? wall_force_sum_[w] : V(V::Zero());
   }
   /// Torque the particles exert on wall w about its pivot at the last force evaluation [N m]
   /// (forces at the contact points plus the couples of rolling resistance).
   A wall_torque(std::size_t w) const {
     check_wall(w, "wall_torque");
-    A t = zero<A>();
-    const V& c = walls_[w].pivot;
-    for (std::size_t e = 0; e < wall_loads_.size(); ++e)
-      if (list_.walls[e] == w) {
-        const auto& l = wall_loads_[e];
-        t -= cross(V(l.point - c), l.force) + l.couple;
-      }
-    return t;
+    return w < wall_torque_sum_.size() ? wall_torque_sum_[w] : zero<A>();
   }
   /// Visits every touching particle-wall contact of the last force evaluation with the forces
-  /// that were applied: f(i, w, point, force_on_wall) (point [m], force [N]); used to spread the
-  /// load of a wall over its nodes.
+  /// that were applied: f(particle id, wall index, point [m], force on the wall [N]); used to
+  /// spread the load of a wall over its nodes.
   template <class F>
   void for_each_wall_load(F&& f) const {
-    for (std::size_t i = 0; i + 1 < list_.wall_offsets.size(); ++i)
-      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
-        if (e >= wall_loads_.size()) return;
-        const auto& l = wall_loads_[e];
-        if (l.force == V::Zero()) continue;
-        f(i, static_cast<std::size_t>(list_.walls[e]), std::as_const(l.point), V(-l.force));
-      }
+    for (const auto& c : wall_contacts_)
+      f(c.id, static_cast<std::size_t>(c.wall), c.point, c.force);
   }
   std::size_t size() const { return particles_.size(); }
 
@@ -1128,9 +1142,11 @@ public:
   void for_each_contact(F&& f) const {
     ContactGeometry<D> g;
     const auto& p = particles_;
-    auto visit = [&](std::size_t i, std::size_t j, bool wall, const PairProperties& pair,
-                     History h, double cell_radius) {
-      auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
+    auto visit = [&](std::size_t i, std::size_t j, bool wall, const PairProperties& pair, History h,
+                     double cell_radius) {
+      const auto& cp =
+          contact_params(p.material[i], wall ? walls_[j].options.material : p.material[j]);
+      auto r = Contact::evaluate(g, pair, cp, h, dt_);
       using R = decltype(r);
       constexpr bool view = std::is_invocable_v<F&, const ContactViewType&>;
       if constexpr (view || std::is_invocable_v<F&, std::size_t, std::size_t, bool,
@@ -1140,8 +1156,8 @@ public:
         if constexpr (thermal) {
           const double tj = wall ? walls_[j].temperature : p.temperature[j];
           if (!wall || walls_[j].conducts()) {
-            const double H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_,
-                                                  length(), cell_radius);
+            const double H =
+                Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius);
             q = H * (tj - p.temperature[i]);
           }
         }
@@ -1193,10 +1209,10 @@ public:
           if (touching_pair(i, j, g)) {
             at_rest(g);
             const PairProperties pair = contact_pair(i, j, false);
+            const auto& cp = contact_params(p.material[i], p.material[j]);
             History h = history_at(history_, e);
-            auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
-            H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_, length(),
-                                     cell_radius_pair(e));
+            auto r = Contact::evaluate(g, pair, cp, h, dt_);
+            H = Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_pair(e));
           } else if constexpr (Contact::indirect) {
             H = gap_pair_conductance(i, j, e, g);
           }
@@ -1209,10 +1225,10 @@ public:
           if (touching_wall(i, w, g)) {
             at_rest(g);
             const PairProperties pair = contact_pair(i, w, true);
+            const auto& cp = contact_params(p.material[i], walls_[w].options.material);
             History h = history_at(wall_history_, e);
-            auto r = Contact::evaluate(g, pair, params_.contact, h, dt_);
-            H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt_, length(),
-                                     cell_radius_wall(e));
+            auto r = Contact::evaluate(g, pair, cp, h, dt_);
+            H = Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_wall(e));
           } else if constexpr (Contact::indirect) {
             H = gap_wall_conductance(i, w, e, g);
           }
@@ -1297,6 +1313,13 @@ public:
   }
 
 private:
+  /// Largest gap across which heat flows over all pairs of materials [m].
+  double largest_cutoff() const {
+    double c = Contact::cutoff(params_.contact, r_max_);
+    for (const auto& cp : pair_params_)
+      c = std::max(c, Contact::cutoff(cp, r_max_));
+    return c;
+  }
   void update_pairs() {
     const auto nm = materials_.size();
     pairs_.resize(nm * nm);
@@ -1646,7 +1669,7 @@ private:
       // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
       for (double r : p.radius) r_max_ = std::max(r_max_, r);
       skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
-      if (heats()) cutoff_ = Contact::cutoff(params_.contact, r_max_);
+      if (heats()) cutoff_ = largest_cutoff();
       if (initialized_) rebuild();
     } else if (contact && initialized_) {
       refresh_pair_cache();
@@ -1715,6 +1738,7 @@ private:
         for (long i = c * chunk; i < end; ++i) contact_row(static_cast<std::size_t>(i));
       }
     }
+    if (!walls_.empty()) collect_wall_loads();
     const auto loads = global_loads(t);
     const V g = std::get<0>(loads);
     const double ct = std::get<1>(loads), cr = std::get<2>(loads);
@@ -1824,10 +1848,11 @@ private:
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
-      const auto& pair =
-          var_pairs_ ? pair_cache_[e] : pairs_[p.material[i] * materials_.size() + p.material[j]];
+      const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
+      const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
+      const auto& cp = pair_params_[mij];
       History& h = hist(history_, e);
-      auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
+      auto r = Contact::evaluate(g, pair, cp, h, dt);
       p.force[i] += r.force;
       p.force[j] -= r.force;
       if constexpr (Contact::has_torque) {
@@ -1840,8 +1865,8 @@ private:
       }
       if constexpr (thermal) {
         if (heat) {
-          const double H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt,
-                                                length(), cell_radius_pair(e));
+          const double H =
+              Contact::conductance(g, pair, r.normal, cp, h, dt, length(), cell_radius_pair(e));
           const double q = H * (p.temperature[j] - p.temperature[i]);
           const double w = dissipation_heat(g, r);
           p.heat_rate[i] += q + w;
@@ -1863,11 +1888,11 @@ private:
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
-      const auto& pair = var_pairs_ ? wall_pair_cache_[e]
-                                    : pairs_[p.material[i] * materials_.size() +
-                                             walls_[w].options.material];
+      const std::size_t miw = p.material[i] * materials_.size() + walls_[w].options.material;
+      const auto& pair = var_pairs_ ? wall_pair_cache_[e] : pairs_[miw];
+      const auto& cp = pair_params_[miw];
       History& h = hist(wall_history_, e);
-      auto r = Contact::evaluate(g, pair, params_.contact, h, dt);
+      auto r = Contact::evaluate(g, pair, cp, h, dt);
       p.force[i] += r.force;
       if constexpr (Contact::has_torque) {
         p.torque[i] += r.torque_i;
@@ -1882,8 +1907,8 @@ private:
       if constexpr (thermal) {
         if (heat) {
           if (walls_[w].conducts()) {
-            const double H = Contact::conductance(g, pair, r.normal, params_.contact, h, dt,
-                                                  length(), cell_radius_wall(e));
+            const double H =
+                Contact::conductance(g, pair, r.normal, cp, h, dt, length(), cell_radius_wall(e));
             p.heat_rate[i] += H * (walls_[w].temperature - p.temperature[i]);
           }
           p.heat_rate[i] += dissipation_heat(g, r);
@@ -1954,8 +1979,9 @@ private:
     if (!(gap < cutoff_) || dist <= 0) return 0.0;
     gap_pair_geometry<D>(g, V(d / dist), dist, p.radius[i], p.radius[j], p.mass[i], p.mass[j]);
     History h{};
-    return Contact::gap_conductance(g, contact_pair(i, j, false), params_.contact, h, dt_,
-                                    length(), cell_radius_pair(e));
+    return Contact::gap_conductance(g, contact_pair(i, j, false),
+                                    contact_params(p.material[i], p.material[j]), h, dt_, length(),
+                                    cell_radius_pair(e));
   }
   double gap_wall_conductance(std::size_t i, std::size_t w, std::size_t e,
                               ContactGeometry<D>& g) const {
@@ -1964,8 +1990,9 @@ private:
     if (!(prox.distance - p.radius[i] < cutoff_)) return 0.0;
     gap_wall_geometry<D>(g, prox, p.radius[i], p.mass[i]);
     History h{};
-    return Contact::gap_conductance(g, contact_pair(i, w, true), params_.contact, h, dt_, length(),
-                                    cell_radius_wall(e));
+    return Contact::gap_conductance(g, contact_pair(i, w, true),
+                                    contact_params(p.material[i], walls_[w].options.material), h,
+                                    dt_, length(), cell_radius_wall(e));
   }
 
   /// Convective conductance h S [W/K] of particle i: h = Nu(Re, Pr) k_f / (2R), S its surface.
@@ -2348,12 +2375,40 @@ private:
     A couple = zero<A>();
   };
   std::vector<WallLoad> wall_loads_;
+  /// The loads of the last force evaluation per wall, and its touching wall contacts.
+  struct WallContact {
+    std::int64_t id;
+    std::uint32_t wall;
+    V point, force; ///< contact point [m], force on the wall [N]
+  };
+  std::vector<V> wall_force_sum_;
+  std::vector<A> wall_torque_sum_;
+  std::vector<WallContact> wall_contacts_;
+  /// Sums the wall loads of the list entries per wall (serially, in list order).
+  void collect_wall_loads() {
+    wall_force_sum_.assign(walls_.size(), V::Zero());
+    wall_torque_sum_.assign(walls_.size(), zero<A>());
+    wall_contacts_.clear();
+    const auto& p = particles_;
+    for (std::size_t i = 0; i + 1 < list_.wall_offsets.size(); ++i)
+      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+        const auto& l = wall_loads_[e];
+        if (l.force == V::Zero() && l.couple == zero<A>()) continue;
+        const auto w = list_.walls[e];
+        wall_force_sum_[w] -= l.force;
+        wall_torque_sum_[w] -= cross(V(l.point - walls_[w].pivot), l.force) + l.couple;
+        wall_contacts_.push_back({p.id[i], w, l.point, V(-l.force)});
+      }
+  }
 
   Params params_;
   Shape shape_;
   std::vector<Material> materials_;
   std::vector<PairOverride> overrides_;
   std::vector<PairProperties> pairs_;
+  /// Contact-model parameters per pair of materials (nm x nm; SimulationParams::contact unless
+  /// set_pair_parameters gave a pair its own).
+  std::vector<typename Contact::Params> pair_params_;
   Particles particles_;
   std::vector<Wall<D>> walls_;
   NeighborList list_;

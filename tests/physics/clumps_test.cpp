@@ -6,8 +6,10 @@
 #include "../errors.hpp"
 #include <cmath>
 #include <doctest/doctest.h>
+#include <filesystem>
 #include <grain/clumps.hpp>
 #include <grain/grain.hpp>
+#include <grain/io/checkpoint.hpp>
 #include <numbers>
 #include <vector>
 
@@ -293,4 +295,40 @@ TEST_CASE("clumps in 2D: disks and sphere-mass disks") {
                                      .measure)
                               .epsilon(1e-13));
   }
+}
+
+TEST_CASE("clumps: a checkpoint resumes bit for bit; a different clump count is refused") {
+  auto setup = [](Sim3& sim, int clumps) {
+    const auto m = sim.add_material(stone);
+    sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.material = m});
+    const auto shape =
+        clump_shape(std::vector<Vec3>{Vec3(0, 0, 0), Vec3(1.4e-3, 0, 0)}, {1e-3, 0.9e-3}, Sphere{});
+    for (int k = 0; k < clumps; ++k)
+      sim.stage<Clumps<3>>().add(sim, shape,
+                                 {.position = Vec3(3e-3 * k, 0, 2e-3 + 1e-3 * k),
+                                  .omega = Vec3(10, 5 * k, -3),
+                                  .material = m});
+  };
+  Sim3::Params prm;
+  prm.gravity = Vec3(0, 0, -9.81);
+  prm.time_step = 2e-6;
+  Sim3 a(prm);
+  setup(a, 3);
+  a.steps(3000);
+  const std::string path = (std::filesystem::temp_directory_path() / "grain_clumps.ckp").string();
+  io::save_checkpoint(a, path);
+  Sim3 b(prm);
+  setup(b, 3);
+  io::load_checkpoint(b, path);
+  a.steps(2000);
+  b.steps(2000);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    CHECK((a.particles().position[i] - b.particles().position[i]).norm() == 0.0);
+  for (std::size_t c = 0; c < 3; ++c)
+    CHECK((a.stage<Clumps<3>>().omega(c) - b.stage<Clumps<3>>().omega(c)).norm() == 0.0);
+  Sim3 wrong(prm);
+  setup(wrong, 2);
+  CHECK(grain::test::has(grain::test::error_of([&] { io::load_checkpoint(wrong, path); }),
+                         "clumps = 3"));
+  std::filesystem::remove(path);
 }

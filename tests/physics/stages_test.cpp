@@ -311,21 +311,13 @@ TEST_CASE("wall loads and the servo stage: a bed pressed to a target stress") {
       net += sim.particles().force[i];
     mean += sum / static_cast<double>(n);
     // the bookkeeping: the particles feel their weight and minus the wall forces, nothing else
-    if (k % 500 == 0) CHECK((net - Vec2(0, -weight) + sum).norm() < 1e-12 * weight);
+    REQUIRE((net - Vec2(0, -weight) + sum).norm() < 1e-12 * weight);
   }
   INFO("stress error ", worst, "; mean wall forces ", mean.transpose(), " weight ", weight,
        "; kinetic energy ", sim.kinetic_energy());
   CHECK(worst < 5e-3);
   CHECK(std::abs(mean.x()) < 1e-3 * weight);
   CHECK(mean.y() == approx(-weight).epsilon(1e-3));
-  // the lid is in equilibrium: its reaction balances the servo stress
-  CHECK(sim.wall_force(lid).y() == approx(servo.stress * servo.area).epsilon(1e-12));
-  // a 2D torque on the floor's pivot (its midpoint): the moment of the forces about it
-  double moment = 0.0;
-  sim.for_each_wall_load([&](std::size_t, std::size_t w, const Vec2& x, const Vec2& f) {
-    if (w == 0) moment += cross(Vec2(x - sim.walls()[0].pivot), f);
-  });
-  CHECK(sim.wall_torque(0) == approx(moment).epsilon(1e-12).scale(1e-12));
 }
 
 TEST_CASE("contact frame: orthonormal, right-handed, and local components rebuild the force") {
@@ -382,7 +374,7 @@ TEST_CASE("contact frame: orthonormal, right-handed, and local components rebuil
   CHECK(sliding > 0);
   CHECK(count > 200);
   CHECK(walls_seen > 0);
-  CHECK(worst < 1e-15);
+  CHECK(worst < 1e-14);
 }
 
 TEST_CASE("contact frame in 2D: the tangent is the normal turned by +90 degrees") {
@@ -392,6 +384,15 @@ TEST_CASE("contact frame in 2D: the tangent is the normal turned by +90 degrees"
     CHECK(cross(f.normal, f.tangent) == approx(1.0).epsilon(1e-15));
     const Vec2 v(0.3, -1.7);
     CHECK((f.to_global(f.to_local(v)) - v).norm() < 1e-15);
+  }
+  // continuous across the horizontal plane and at the vertical (the frame's one discontinuity is
+  // at n = -(1, 2, 3)/sqrt(14))
+  for (const Vec3& n0 : {Vec3(1, 0, 0), Vec3(0.6, -0.8, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+    const Vec3 e = n0.unitOrthogonal();
+    const auto a = ContactFrame<3>::from_normal((n0 + 1e-9 * e).normalized());
+    const auto b = ContactFrame<3>::from_normal((n0 - 1e-9 * e).normalized());
+    CHECK((a.tangent1 - b.tangent1).norm() < 1e-8);
+    CHECK((a.tangent2 - b.tangent2).norm() < 1e-8);
   }
   // 3D frames near the poles and the equator
   for (const Vec3& n : {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(0, -1, 0),

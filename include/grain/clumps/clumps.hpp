@@ -266,14 +266,13 @@ public:
   }
 
   // ------------------------------------------------------------------ hooks
-  template <class Sim>
-  void begin_step(Sim&) {
-    in_step_ = true;
-  }
-
   /// Half kick, drift and rotation of the clumps; members placed rigidly.
   template <class Sim>
   void before_search(Sim& sim) {
+    static_assert(Sim::integrator_type::drift_before_forces,
+                  "grain::Clumps: clumps are integrated with velocity Verlet; use "
+                  "integrate::VelocityVerlet (the default) as the simulation's integrator");
+    in_step_ = true; // a step that moves (not the initial evaluation, not a thermal analysis)
     const double h = sim.time_step();
     if constexpr (D == 3) {
       bodies::kick_drift(body_, h);
@@ -350,9 +349,15 @@ public:
     in_step_ = false;
   }
 
-  /// The clumps' state in a checkpoint.
+  /// The clumps' state in a checkpoint (the program makes the same clumps again before loading).
   template <class Archive>
   void serialize(Archive& ar) {
+    std::uint64_t n = size();
+    ar(n);
+    if (n != size())
+      throw InputError("checkpoint: clumps = " + std::to_string(n) +
+                       " is invalid; valid: " + std::to_string(size()) +
+                       " (the clumps this program adds, in the same order)");
     if constexpr (D == 3)
       ar(body_.position, body_.velocity, body_.omega, body_.orientation, body_.force, body_.torque);
     else

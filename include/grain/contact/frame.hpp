@@ -4,10 +4,13 @@
 ///
 /// `ContactFrame<D>` is an orthonormal, right-handed frame built from the contact normal n
 /// (unit, from particle i towards its partner): in 2D (n, t) with t = (-n_y, n_x); in 3D
-/// (n, t1, t2) with t1 x t2 = n, built without branches on the normal's direction except its
-/// sign (Duff, Burgess, Christensen, Hery, Kensler, Liani, Villemin, "Building an orthonormal
-/// basis, revisited", J. Computer Graphics Techniques 6(1), 2017). The tangents depend only on
-/// n, so a contact keeps its frame while its normal does not turn.
+/// (n, t1, t2) with t1 x t2 = n. No tangent field on the sphere is continuous everywhere; the 3D
+/// frame is J. R. Frisvad's ("Building an orthonormal basis from a 3D unit vector without
+/// normalization", J. Graphics Tools 16(3), 2012), whose only discontinuity (at n = -z) is turned
+/// to n = -(1, 2, 3)/sqrt(14), a direction that the axis-aligned walls and lattices of typical
+/// set-ups do not produce: the tangents change continuously with n everywhere else (horizontal and
+/// vertical contacts included). They depend on n alone, so a contact keeps its frame while its
+/// normal does not turn.
 ///
 /// `ContactView` bundles, separately: the partners (i, j, wall or not), the geometry
 /// (`ContactGeometry`: normal, overlap, point, relative velocities), the physics result (force
@@ -16,6 +19,7 @@
 /// `data.conduction`, `data.area`) and the heat rate into i [W]. `Simulation::for_each_contact`
 /// passes one to a callable that takes a single argument.
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
 #include <grain/contact/geometry.hpp>
@@ -49,18 +53,42 @@ struct ContactFrame<3> {
   Vec3 tangent2 = Vec3::UnitZ();
 
   static ContactFrame from_normal(const Vec3& n) {
-    // Duff et al. (2017), listing 3: b1 x b2 = n for the frame (b1, b2, n)
-    const double sign = std::copysign(1.0, n.z());
-    const double a = -1.0 / (sign + n.z());
-    const double b = n.x() * n.y() * a;
-    const Vec3 b1(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
-    const Vec3 b2(b, sign + n.y() * n.y() * a, -n.y());
-    return {n, b1, b2};
+    // Frisvad's basis of m = S^T n, turned back by S: continuous in n except near n = -s, the
+    // image of m = -z (s = S z = (1, 2, 3)/sqrt(14), a direction few contacts have)
+    const Vec3 m = to_pole_frame(n);
+    const double c = 1.0 + m.z();
+    Vec3 b1, b2;
+    if (c > 1e-12) {
+      const double a = 1.0 / c, b = -m.x() * m.y() * a;
+      b1 = Vec3(1.0 - m.x() * m.x() * a, b, -m.x());
+      b2 = Vec3(b, 1.0 - m.y() * m.y() * a, -m.y());
+    } else {
+      b1 = Vec3(0.0, -1.0, 0.0);
+      b2 = Vec3(-1.0, 0.0, 0.0);
+    }
+    return {n, from_pole_frame(b1), from_pole_frame(b2)};
   }
   /// Components (normal, tangent 1, tangent 2) of a global vector.
   Vec3 to_local(const Vec3& v) const { return {v.dot(normal), v.dot(tangent1), v.dot(tangent2)}; }
   /// Global vector of local components (normal, tangent 1, tangent 2).
   Vec3 to_global(const Vec3& l) const { return l[0] * normal + l[1] * tangent1 + l[2] * tangent2; }
+
+private:
+  /// The fixed rotation S (an orthonormal basis with third axis s = (1, 2, 3)/sqrt(14)).
+  static const Eigen::Matrix3d& pole() {
+    static const Eigen::Matrix3d r = [] {
+      const Vec3 z = Vec3(1.0, 2.0, 3.0).normalized();
+      const Vec3 x = Vec3(2.0, -1.0, 0.0).normalized();
+      Eigen::Matrix3d m;
+      m.col(0) = x;
+      m.col(1) = z.cross(x);
+      m.col(2) = z;
+      return m;
+    }();
+    return r;
+  }
+  static Vec3 to_pole_frame(const Vec3& v) { return pole().transpose() * v; }
+  static Vec3 from_pole_frame(const Vec3& v) { return pole() * v; }
 };
 
 /// One touching contact, as `Simulation::for_each_contact` shows it. References are valid only

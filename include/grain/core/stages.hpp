@@ -6,8 +6,9 @@
 /// simulation by reference. `Simulation<Shape, Search, Contact, grain::stages<S1, S2>>` holds one
 /// object of each stage type and calls its hooks at fixed points of every step, in list order:
 ///
-/// - `initialize(sim)`: once, at the end of `Simulation::initialize()` (neighbour list built,
-///   time step fixed, initial forces known);
+/// - `initialize(sim)`: at the end of every `Simulation::initialize()` (neighbour list built,
+///   time step fixed, initial forces known), before the first step and after a change of the
+///   set-up between runs;
 /// - `begin_step(sim)`: at the start of a step, time t;
 /// - `before_search(sim)`: after the drift (velocity Verlet: positions at t + dt, velocities at
 ///   t + dt/2) and the wall motion, before the neighbour search; a stage may move particles and

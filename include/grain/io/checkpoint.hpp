@@ -207,6 +207,20 @@ private:
   std::string path_;
 };
 
+/// The number of user stages and the sizes of the per-particle fields of a simulation type
+/// ("" without either).
+template <class... S, class... F>
+std::string stage_signature(stages<S...>, fields<F...>) {
+  std::string s;
+  if (sizeof...(S) > 0) s += ", " + std::to_string(sizeof...(S)) + " stages";
+  if (sizeof...(F) > 0) {
+    s += ", fields of";
+    ((s += " " + std::to_string(sizeof(F))), ...);
+    s += " bytes";
+  }
+  return s;
+}
+
 /// What identifies the type of a simulation in a checkpoint.
 template <class Sim>
 std::string signature() {
@@ -214,7 +228,8 @@ std::string signature() {
   return std::string(Sim::shape_type::name) + " " + std::to_string(Sim::dimension) + "D, " +
          describe_contact<C>() + ", integrator " + Sim::integrator_type::name + ", history " +
          std::to_string(sizeof(typename Sim::History)) + " bytes" +
-         (Sim::thermal ? ", thermal" : "");
+         (Sim::thermal ? ", thermal" : "") +
+         stage_signature(typename Sim::StageList{}, typename Sim::FieldList{});
 }
 
 /// The numbers of the materials, to check that a restart uses the same ones.

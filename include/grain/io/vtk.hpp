@@ -432,13 +432,14 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
     for (const auto i : sim.group_indices(group)) member[i] = 1;
   }
   std::vector<Row> rows;
-  const auto& contact = sim.params().contact;
   sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
                            double q) {
     if (!member.empty() && !member[i] && (wall || !member[j])) return;
     const auto pair = sim.contact_pair(i, j, wall);
     using C = typename Sim::contact_type;
-    const double a = C::area_model::radius(g, pair, r.normal, contact.area);
+    const auto mj = wall ? sim.walls()[j].options.material : p.material[j];
+    const double a =
+        C::area_model::radius(g, pair, r.normal, sim.contact_params(p.material[i], mj).area);
     const auto frame = ContactFrame<D>::from_normal(g.normal);
     rows.push_back({i, j, wall, g.point, r.tangent.force, g.normal, frame.to_local(r.force),
                     r.normal.force, g.overlap, a, q});

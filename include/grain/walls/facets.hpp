@@ -15,9 +15,9 @@
 ///   end of the step (the velocity the contact models see);
 /// - `after_forces`: the force each touching particle exerts on a facet, at the contact point p,
 ///   is spread over the facet's nodes by the barycentric coordinates of p (projected on the facet
-///   and clamped to it): F_k = lambda_k(p) F, so that sum_k F_k = F and
-///   sum_k x_k x F_k = p x F (force and moment preserved); free nodes then get their second
-///   half kick with F_k + m g, driven nodes the velocity of t + dt.
+///   and clamped to it, q): F_k = lambda_k(q) F, so that sum_k F_k = F and
+///   sum_k x_k x F_k = q x F; free nodes then get their second half kick with F_k + m g, driven
+///   nodes the velocity of t + dt.
 ///
 /// Units: SI (m, kg, s, N).
 
@@ -86,6 +86,13 @@ public:
     options.omega = zero<Angular<D>>();
     const auto w = sim.add_wall(shape_of(corners), options);
     facets_.push_back({corners, w});
+    std::array<V, D> u;
+    for (std::size_t k = 0; k < D; ++k) {
+      auto& node = nodes_[corners[k]];
+      if (!(node.mass > 0.0)) node.velocity = driven(node, sim.time());
+      u[k] = node.velocity;
+    }
+    sim.walls()[w].node_velocity = u;
     return w;
   }
 
@@ -101,12 +108,11 @@ public:
 
   // ------------------------------------------------------------------ hooks
   template <class Sim>
-  void begin_step(Sim&) {
-    in_step_ = true;
-  }
-
-  template <class Sim>
   void before_search(Sim& sim) {
+    static_assert(Sim::integrator_type::drift_before_forces,
+                  "grain::Facets: nodes are integrated with velocity Verlet; use "
+                  "integrate::VelocityVerlet (the default) as the simulation's integrator");
+    in_step_ = true; // a step that moves (not the initial evaluation, not a thermal analysis)
     const double h = sim.time_step(), t = sim.time();
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       auto& node = nodes_[n];
@@ -145,7 +151,7 @@ public:
       for (std::size_t k = 0; k < facets_.size(); ++k)
         facet_of_[facets_[k].wall] = k;
     }
-    sim.for_each_wall_load([&](std::size_t, std::size_t w, const V& p, const V& f) {
+    sim.for_each_wall_load([&](std::int64_t, std::size_t w, const V& p, const V& f) {
       const std::size_t k = facet_of_[w];
       if (k == none) return;
       std::array<V, D> x;
@@ -163,8 +169,8 @@ public:
         force_[n] = load_[n] + node.mass * g + extra_[n];
         extra_[n] = V::Zero(); // loads added by other stages count for one evaluation
         if (in_step_) node.velocity += (0.5 * h / node.mass) * force_[n];
-      } else if (in_step_) {
-        node.velocity = driven(node, t + h);
+      } else {
+        node.velocity = driven(node, in_step_ ? t + h : t);
       }
     }
     for (const auto& f : facets_) {
@@ -180,9 +186,16 @@ public:
     in_step_ = false;
   }
 
-  /// The nodes' state in a checkpoint.
+  /// The nodes' state in a checkpoint (the program makes the same nodes and facets again before
+  /// loading).
   template <class Archive>
   void serialize(Archive& ar) {
+    std::uint64_t n = nodes_.size();
+    ar(n);
+    if (n != nodes_.size())
+      throw InputError("checkpoint: facet nodes = " + std::to_string(n) +
+                       " is invalid; valid: " + std::to_string(nodes_.size()) +
+                       " (the nodes this program adds, in the same order)");
     std::vector<V> x, v;
     for (const auto& n : nodes_) {
       x.push_back(n.position);
