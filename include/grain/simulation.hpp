@@ -976,6 +976,10 @@ public:
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     if constexpr (Archive::reading) {
       wall_loads_.assign(list_.walls.size(), WallLoad{});
+      wall_loads_pending_ = false;
+      wall_force_sum_.clear();
+      wall_torque_sum_.clear();
+      wall_contacts_.clear();
       origin_.clear();
       groups_dirty_ = true;
       if (var_pairs_) refresh_pair_cache();
@@ -1041,12 +1045,14 @@ public:
   /// the first step and after loading a checkpoint, until the next step.
   V wall_force(std::size_t w) const {
     check_wall(w, "wall_force");
+    collect_wall_loads();
     return w < wall_force_sum_.size() ? wall_force_sum_[w] : V(V::Zero());
   }
   /// Torque the particles exert on wall w about its pivot at the last force evaluation [N m]
   /// (forces at the contact points plus the couples of rolling resistance).
   A wall_torque(std::size_t w) const {
     check_wall(w, "wall_torque");
+    collect_wall_loads();
     return w < wall_torque_sum_.size() ? wall_torque_sum_[w] : zero<A>();
   }
   /// Visits every touching particle-wall contact of the last force evaluation with the forces
@@ -1054,6 +1060,7 @@ public:
   /// spread the load of a wall over its nodes.
   template <class F>
   void for_each_wall_load(F&& f) const {
+    collect_wall_loads();
     for (const auto& c : wall_contacts_)
       f(c.id, static_cast<std::size_t>(c.wall), c.point, c.force);
   }
@@ -1491,6 +1498,7 @@ private:
   void rebuild() {
     auto& p = particles_;
     const std::size_t n = p.size();
+    collect_wall_loads(); // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(list_);
     std::vector<History> old_hist = std::move(history_), old_whist = std::move(wall_history_);
     std::vector<std::uint32_t> perm;
@@ -1738,7 +1746,7 @@ private:
         for (long i = c * chunk; i < end; ++i) contact_row(static_cast<std::size_t>(i));
       }
     }
-    if (!walls_.empty()) collect_wall_loads();
+    wall_loads_pending_ = !walls_.empty();
     const auto loads = global_loads(t);
     const V g = std::get<0>(loads);
     const double ct = std::get<1>(loads), cr = std::get<2>(loads);
@@ -2206,6 +2214,7 @@ private:
     for (std::size_t k = 0; !due && k < doomed_.size(); ++k) due = doomed_[k].first <= t;
     for (std::size_t k = 0; !due && k < pending_.size(); ++k) due = pending_[k].creation_time <= t;
     if (!due) return;
+    collect_wall_loads(); // before the particles are renumbered
     std::vector<char> gone(n, 0);
     bool any = false;
     if (box || sink) {
@@ -2381,11 +2390,17 @@ private:
     std::uint32_t wall;
     V point, force; ///< contact point [m], force on the wall [N]
   };
-  std::vector<V> wall_force_sum_;
-  std::vector<A> wall_torque_sum_;
-  std::vector<WallContact> wall_contacts_;
+  mutable std::vector<V> wall_force_sum_;
+  mutable std::vector<A> wall_torque_sum_;
+  mutable std::vector<WallContact> wall_contacts_;
+  /// True from a force evaluation until its wall loads are summed: they are summed when asked
+  /// for, or before a neighbour-list rebuild replaces the list entries (a run that never asks
+  /// pays only at rebuilds).
+  mutable bool wall_loads_pending_ = false;
   /// Sums the wall loads of the list entries per wall (serially, in list order).
-  void collect_wall_loads() {
+  void collect_wall_loads() const {
+    if (!wall_loads_pending_) return;
+    wall_loads_pending_ = false;
     wall_force_sum_.assign(walls_.size(), V::Zero());
     wall_torque_sum_.assign(walls_.size(), zero<A>());
     wall_contacts_.clear();
