@@ -383,6 +383,45 @@ public:
     return id;
   }
 
+  /// Removes the particle with this id (active or not yet created) with its contacts, now:
+  /// between runs, or before the first. Its id is not used again (removed_ids). Throws
+  /// InputError for an id that is not a particle of the simulation.
+  void remove_particle(std::int64_t id) {
+    const auto pend = std::find_if(pending_.begin(), pending_.end(),
+                                   [&](const ParticleSpec<D>& s) { return s.id == id; });
+    if (pend != pending_.end()) {
+      pending_.erase(pend);
+      std::erase_if(doomed_, [&](const auto& d) { return d.second == id; });
+      removed_ids_.push_back(id);
+      return;
+    }
+    if (!has_particle(id))
+      throw InputError("Simulation::remove_particle: id = " + std::to_string(id) +
+                       " is invalid; valid: the id of a particle of the simulation");
+    if (initialized_) {
+      // as a destruction time that has come: the list is renumbered, the other contacts keep
+      // their histories
+      doomed_.push_back({-std::numeric_limits<double>::infinity(), id});
+      lifecycle();
+      return;
+    }
+    std::erase_if(doomed_, [&](const auto& d) { return d.second == id; });
+    removed_ids_.push_back(id);
+    if (list_.rows() == 0) { // no list yet: nothing refers to the indices
+      std::vector<std::uint32_t> kept;
+      for (std::size_t i = 0; i < particles_.size(); ++i)
+        if (particles_.id[i] != id) kept.push_back(static_cast<std::uint32_t>(i));
+      particles_.permute(kept);
+      permute_fields(kept);
+      if (var_pairs_)
+        for (auto& o : over_)
+          permute_values(o, kept);
+      groups_dirty_ = true;
+      return;
+    }
+    removal_requests_.push_back(id); // carried out by initialize, which maps the old list
+  }
+
 private:
   /// Appends a validated particle to the arrays.
   void append_particle(const ParticleSpec<D>& s) {
@@ -449,6 +488,10 @@ public:
   }
   /// Gravity acting at the last force evaluation (or the constant gravity) [m/s^2].
   V gravity() const { return gravity_fn_ ? gravity_now_ : params_.gravity; }
+  /// Gravity as a function of time [m/s^2] (a constant function for constant gravity).
+  VectorTimeFunction<D> gravity_function() const {
+    return gravity_fn_ ? *gravity_fn_ : VectorTimeFunction<D>(params_.gravity);
+  }
 
   /// Global damping that changes in time: force -c_t(t) v [c_t in N s/m] and torque -c_r(t) omega
   /// [c_r in N m s], replacing SimulationParams::damping_translational / damping_rotational.
@@ -675,7 +718,9 @@ public:
   std::size_t inactive_count() const { return pending_.size(); }
   /// True if a particle with this id is active (present in the arrays).
   bool is_active(std::int64_t id) const {
-    return std::find(particles_.id.begin(), particles_.id.end(), id) != particles_.id.end();
+    return std::find(particles_.id.begin(), particles_.id.end(), id) != particles_.id.end() &&
+           std::find(removal_requests_.begin(), removal_requests_.end(), id) ==
+               removal_requests_.end();
   }
 
   // ---------------------------------------------------------------- time step
@@ -828,10 +873,28 @@ public:
     if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
     origin_.clear();
     // particles added since the last build were appended: the old rows keep their indices, so
-    // the contact histories of the old pairs carry over
-    if (list_.rows() > 0 && list_.rows() < particles_.size()) {
+    // the contact histories of the old pairs carry over; particles removed since then are
+    // taken out here
+    std::vector<std::uint32_t> kept(particles_.size());
+    std::iota(kept.begin(), kept.end(), 0u);
+    if (!removal_requests_.empty()) {
+      std::sort(removal_requests_.begin(), removal_requests_.end());
+      std::erase_if(kept, [&](std::uint32_t i) {
+        return std::binary_search(removal_requests_.begin(), removal_requests_.end(),
+                                  particles_.id[i]);
+      });
+      removal_requests_.clear();
+      particles_.permute(kept);
+      permute_fields(kept);
+      if (var_pairs_)
+        for (auto& o : over_)
+          permute_values(o, kept);
+      groups_dirty_ = true;
+    }
+    if (list_.rows() > 0 && (list_.rows() < particles_.size() || kept.size() < list_.rows())) {
       origin_.assign(particles_.size(), none);
-      std::iota(origin_.begin(), origin_.begin() + static_cast<std::ptrdiff_t>(list_.rows()), 0u);
+      for (std::size_t i = 0; i < kept.size(); ++i)
+        if (kept[i] < list_.rows()) origin_[i] = kept[i];
     }
     rebuild();
     ensure_groups();
@@ -2481,6 +2544,7 @@ private:
   std::vector<ParticleSpec<D>> pending_;                 ///< inactive until their creation time
   std::vector<std::pair<double, std::int64_t>> doomed_;  ///< (destruction time, id)
   std::vector<std::int64_t> removed_ids_;
+  std::vector<std::int64_t> removal_requests_; ///< ids removed before initialisation
   /// After removal / activation: the index in the neighbour list's arrays of the particle now at
   /// index k (`none` for a new one); empty = unchanged indices.
   std::vector<std::uint32_t> origin_;

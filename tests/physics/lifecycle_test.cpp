@@ -623,6 +623,58 @@ TEST_CASE("lifecycle: a removal keeps the contact histories of the remaining pai
   MESSAGE("history: worst relative difference of the trajectories " << worst);
 }
 
+// remove_particle: between runs it acts as a destruction time that has come (the same pairs as
+// the previous test: removing C by hand one step before the sink would keep the histories of the
+// other contacts, and B and W move as in the run without C, 1e-12 relative); before the first
+// run it removes the particle before anything is computed; an inactive particle never appears.
+TEST_CASE("lifecycle: remove_particle removes a particle now and keeps the other histories") {
+  const long n_rm = 100;
+  Sim3 one = history_run(true, n_rm), two = history_run(false, n_rm);
+  one.steps(n_rm - 1);
+  two.steps(n_rm - 1);
+  one.remove_particle(13);
+  CHECK(!one.is_active(13));
+  CHECK(removed_set(one) == std::set<std::int64_t>{13});
+  one.steps(1);
+  two.steps(1);
+  REQUIRE(one.is_active(15));
+  for (const bool wall : {false, true}) {
+    const std::int64_t id = wall ? 14 : 11;
+    const Tangent a = tangent_of(one, id, wall), b = tangent_of(two, id, wall);
+    REQUIRE(a.found == 1);
+    CHECK((a.force - b.force).norm() <= 1e-12 * b.force.norm());
+  }
+  one.steps(300);
+  two.steps(300);
+  for (const std::int64_t id : {11, 14}) {
+    const Vec3 x = one.particles().position[one.index_of(id)];
+    const Vec3 y = two.particles().position[two.index_of(id)];
+    CHECK((x - y).norm() <= 1e-12 * y.norm());
+  }
+  CHECK_THROWS_AS(one.remove_particle(13), InputError); // gone already
+  CHECK_THROWS_AS(one.remove_particle(99), InputError); // never was
+
+  // before the first run, and a particle not yet created
+  Sim3 sim(params<Sim3>(Vec3(0, 0, -g0)));
+  const auto k = sim.add_material(soft());
+  sim.add_particle({.position = Vec3(0, 0, 0), .radius = 1e-3, .material = k, .id = 1});
+  sim.add_particle({.position = Vec3(0, 0, 0.0015), .radius = 1e-3, .material = k, .id = 2});
+  sim.add_particle(
+      {.position = Vec3(0, 0, 0.1), .radius = 1e-3, .material = k, .creation_time = 0.5, .id = 3});
+  sim.remove_particle(2); // overlapping particle 1: it would push it
+  CHECK_THROWS_AS(sim.remove_particle(2), InputError);
+  sim.remove_particle(3);
+  CHECK(removed_set(sim) == std::set<std::int64_t>{2, 3});
+  sim.steps(100);
+  CHECK(sim.size() == 1);
+  CHECK(sim.inactive_count() == 0);
+  const double t = sim.time();
+  CHECK(std::abs(sim.particles().position[0].z() + g0 * t * t / 2) <= 1e-12);
+  CHECK_THROWS_AS(
+      sim.add_particle({.position = Vec3(1, 0, 0), .radius = 1e-3, .material = k, .id = 2}),
+      InputError); // ids are not used again
+}
+
 // A particle added with add_particle during a run (not through a creation time) must not reset
 // the contact histories of the others either: the old rows keep their indices, and
 // initialize() maps them to the old list.

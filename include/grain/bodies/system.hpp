@@ -24,7 +24,8 @@
 ///                gap p1 - p2 at t), so that the drift closes the gap
 ///     3. drift:  x += h v, free rotation over h (stages 2 and 3 repeated with further impulses
 ///                until the gaps after the drift are closed, see below);  t += h
-///     4. forces at t + h: gravity m g(t), global damping, springs, torsion springs
+///     4. forces at t + h: gravity m g(t), external loads (set_external_load), global damping,
+///        springs, torsion springs
 ///     5. kick:   v += h/2 F(t+h)/m,  omega += h/2 J_world^-1 T(t+h)
 ///     6. joints: impulses that set every joint point's relative velocity to zero
 ///     7. unspring rules (one `Unspring::update` each, on the springs' results of stage 4)
@@ -233,7 +234,10 @@ public:
   /// Adds a body (validated by `RigidBodies::add`); returns its index.
   std::size_t add_body(const RigidBody& b) {
     initialized_ = false;
-    return bodies_.add(b);
+    const std::size_t i = bodies_.add(b);
+    external_force_.resize(bodies_.size(), Vec3::Zero());
+    external_torque_.resize(bodies_.size(), Vec3::Zero());
+    return i;
   }
 
   /// Adds a translational spring between point1 of body1 and point2 of body2 (`world`: a fixed
@@ -387,8 +391,40 @@ public:
     initialized_ = true;
   }
 
+  /// A load [N], [N m] (torque about the centre) on body i, world components, added to its
+  /// forces in every evaluation until it is set again (the contact forces of a body that is
+  /// also a particle of a simulation arrive this way, see coupling.hpp). Throws InputError for an
+  /// unknown body or non-finite components.
+  void set_external_load(std::size_t i, const Vec3& force, const Vec3& torque = Vec3::Zero()) {
+    require_body("BodySystem::set_external_load", "body", static_cast<long>(i), false);
+    if (!force.allFinite() || !torque.allFinite())
+      grain::detail::require(false, "BodySystem::set_external_load", "load", "(non-finite)",
+                             "finite components [N], [N m]");
+    external_force_[i] = force;
+    external_torque_[i] = torque;
+  }
+  /// The external load of body i (set_external_load) [N], [N m].
+  std::pair<Vec3, Vec3> external_load(std::size_t i) const {
+    return {external_force_.at(i), external_torque_.at(i)};
+  }
+
+  /// Sets the time [s] (the start of a run, or the clock of a simulation the system is coupled
+  /// to). Throws InputError for a non-finite time.
+  void set_time(double t) {
+    grain::detail::require(std::isfinite(t), "BodySystem::set_time", "t", t, "finite [s]");
+    time_ = t;
+  }
+
   /// One step of length h [s] (see the file comment). Throws InputError for h not finite and > 0.
   void step(double h) {
+    begin_step(h);
+    finish_step(h);
+  }
+
+  /// Stages 1-3 of a step of length h [s]: first kick, joint impulses and drift, t += h. A
+  /// coupled simulation evaluates its contact forces between `begin_step` and `finish_step`
+  /// (coupling.hpp); `step` calls both.
+  void begin_step(double h) {
     grain::detail::require_positive("BodySystem::step", "h", h);
     grain::detail::require(std::isfinite(joint_tolerance) && joint_tolerance > 0.0, "BodySystem",
                            "joint_tolerance", joint_tolerance, "(0, inf) (relative gap)");
@@ -403,6 +439,11 @@ public:
       drift_with_joints(h);
     }
     time_ += h;
+  }
+
+  /// Stages 4-7 of the step of length h begun by `begin_step`: forces at t + h (with the
+  /// external loads), second kick, joint impulses, unspring rules.
+  void finish_step(double h) {
     compute_forces(h);
     kick(bodies_, h);
     if (!joints_.empty()) {
@@ -706,13 +747,17 @@ private:
   /// initialisation).
   void compute_forces(double h) {
     clear_forces(bodies_);
+    external_force_.resize(bodies_.size(), Vec3::Zero()); // bodies added through bodies()
+    external_torque_.resize(bodies_.size(), Vec3::Zero());
     const Vec3 g = gravity_(time_);
     if (!g.allFinite())
       grain::detail::require(false, "BodySystem", "gravity",
                              "(non-finite) at t = " + grain::detail::to_text(time_),
                              "finite components [m/s^2]");
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-      bodies_.force[i] += bodies_.mass[i] * g;
+    for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      bodies_.force[i] += bodies_.mass[i] * g + external_force_[i];
+      bodies_.torque[i] += external_torque_[i];
+    }
     if (damped_) {
       const Vec3 dv = damping_linear_(time_), dw = damping_angular_(time_);
       require_damping(damping_linear_, damping_angular_);
@@ -967,6 +1012,7 @@ private:
   }
 
   RigidBodies bodies_{};
+  std::vector<Vec3> external_force_{}, external_torque_{};
   std::vector<SpringParams> spring_params_{};
   std::vector<SpringState> spring_states_{};
   std::vector<SpringLink> spring_links_{};

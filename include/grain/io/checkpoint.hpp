@@ -210,7 +210,7 @@ private:
 /// The number of user stages and the sizes of the per-particle fields of a simulation type
 /// ("" without either).
 template <class... S, class... F>
-std::string stage_signature(stages<S...>, fields<F...>) {
+std::string stage_signature(grain::stages<S...>, grain::fields<F...>) {
   std::string s;
   if (sizeof...(S) > 0) s += ", " + std::to_string(sizeof...(S)) + " stages";
   if (sizeof...(F) > 0) {
