@@ -18,9 +18,11 @@
 #include "../errors.hpp"
 #include <cmath>
 #include <doctest/doctest.h>
+#include <filesystem>
 #include <grain/bodies.hpp>
 #include <grain/bodies/coupling.hpp>
 #include <grain/grain.hpp>
+#include <grain/io/checkpoint.hpp>
 #include <numbers>
 #include <vector>
 
@@ -240,4 +242,54 @@ TEST_CASE("coupled bodies: a step above the springs' critical step is rejected")
   CHECK(test::has(e, "time_step = 5e-05"));
   CHECK(test::has(e, "critical step of the coupled body system"));
   CHECK_THROWS_AS(c.attach(sim, id), InputError); // already a body
+}
+
+namespace {
+/// A cradle of two pendula (ball joints) whose first ball also hangs on a damped spring; a
+/// third, free sphere lies on a floor in the path of the second ball.
+Sim cradle_with_spring() {
+  const double r = 0.01, L = 0.2, theta0 = 0.3;
+  Sim sim = make_sim(1e-5);
+  sim.add_wall(walls::Plane{Vec3(0, 0, -r), Vec3(0, 0, 1)});
+  const Vec3 pivot1(-2 * r, 0, L), pivot2(0, 0, L);
+  const auto id2 = add_sphere(sim, Vec3(0, 0, 0), r);
+  const auto id1 = add_sphere(sim, pivot1 + L * Vec3(-std::sin(theta0), 0, -std::cos(theta0)), r);
+  add_sphere(sim, Vec3(2.2 * r + 0.01, 0, 0.0), r);
+  auto& c = sim.stage<gb::Coupling>();
+  const auto b1 = c.attach(sim, id1), b2 = c.attach(sim, id2);
+  c.system().add_ball_joint(static_cast<long>(b1), pivot1);
+  c.system().add_ball_joint(static_cast<long>(b2), pivot2);
+  c.system().add_spring({.spring = linear_table(0.02), .damping_ratio = 0.1}, static_cast<long>(b1),
+                        sim.particles().position[sim.index_of(id1)], gb::world, Vec3(-0.3, 0, 0.0));
+  return sim;
+}
+} // namespace
+
+TEST_CASE("coupled bodies: a checkpoint resumes bit for bit; another system is refused") {
+  const auto path = std::filesystem::temp_directory_path() / "grain_coupling.ckpt";
+  Sim a = cradle_with_spring(), b = cradle_with_spring();
+  a.steps(23000); // through the collision of the pendula (at about 22400 steps)
+  io::save_checkpoint(a, path.string());
+  a.steps(6000); // ball 2 hits the free sphere
+  io::load_checkpoint(b, path.string());
+  b.steps(6000);
+  const auto& ba = a.stage<gb::Coupling>().system();
+  const auto& bb = b.stage<gb::Coupling>().system();
+  for (std::size_t k = 0; k < ba.bodies().size(); ++k) {
+    CHECK(ba.bodies().position[k] == bb.bodies().position[k]);
+    CHECK(ba.bodies().velocity[k] == bb.bodies().velocity[k]);
+  }
+  CHECK(ba.spring_result(0).total == bb.spring_result(0).total);
+  CHECK(ba.time() == bb.time());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    CHECK(a.particles().position[i] == b.particles().position[i]);
+    CHECK(a.particles().velocity[i] == b.particles().velocity[i]);
+  }
+  // the free sphere was hit: the comparison covers contacts of attached and free particles
+  CHECK(a.particles().velocity[a.index_of(2)].x() > 1e-3);
+  Sim other = cradle_with_spring();
+  other.stage<gb::Coupling>().system().add_body(gb::sphere_body(0.01, 1000.0, Vec3(1, 1, 1)));
+  CHECK(test::has(test::error_of([&] { io::load_checkpoint(other, path.string()); }),
+                  "body system with 2 bodies"));
+  std::filesystem::remove(path);
 }

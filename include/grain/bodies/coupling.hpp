@@ -180,13 +180,20 @@ public:
     in_step_ = false;
   }
 
-  /// Checkpoints do not carry the body system's state yet: writing or reading one throws
-  /// InputError (rather than resuming without the bodies' motion and spring histories).
+  /// The coupling and its body system in a checkpoint (the program makes the same system and
+  /// attaches and converts the same particles before loading).
   template <class Archive>
-  void serialize(Archive&) {
-    throw InputError("checkpoint: a simulation with coupled bodies (grain::bodies::Coupling) is "
-                     "invalid; valid: a simulation without coupled bodies (the body system's "
-                     "state is not saved in checkpoints)");
+  void serialize(Archive& ar) {
+    std::uint64_t n = attached_.size();
+    ar(n);
+    if (n != attached_.size())
+      throw InputError("checkpoint: attached particles = " + std::to_string(n) +
+                       " is invalid; valid: " + std::to_string(attached_.size()) +
+                       " (the particles this program attaches, in the same order)");
+    ar(particle_, attached_);
+    system_.serialize(ar);
+    in_step_ = false;
+    system_initialized_ = false; // gravity and clock are taken again from the simulation
   }
 
 private:

@@ -194,6 +194,12 @@ struct SpringResult {
   double friction = 0.0;              ///< abs(F_t) [N] ('FF')
   double stiffness = 0.0;             ///< current tangent stiffness k [N/m]
   int code = spring_code::regular;    ///< 'SS'
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(force, direction, friction_force, length, stroke, velocity, total, elastic, damping,
+       friction, stiffness, code);
+  }
 };
 
 namespace detail {

@@ -119,6 +119,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <span>
@@ -161,6 +162,11 @@ struct JointResult {
   Vec3 point = Vec3::Zero();    ///< joint point on body 1 (world) [m]
   Vec3 reaction = Vec3::Zero(); ///< mean joint force on body 1 over the step [N]
   double gap = 0.0;             ///< abs(p1 - p2) [m]
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(point, reaction, gap);
+  }
 };
 
 /// One critical-step estimate, as a record of Parmec's CRITICAL list.
@@ -568,6 +574,67 @@ public:
   }
 
   const Unspring& unspring(std::size_t i) const { return unsprings_.at(i); }
+
+  /// Visits the run state (bodies' motion and loads, spring states and results, unspring rules,
+  /// clock) with a checkpoint archive (io/checkpoint.hpp); the set-up (bodies, springs, torsion
+  /// springs, joints, rules, gravity, damping) is made again by the program before reading.
+  /// Throws InputError when reading a state of a system with other counts.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    const std::array<std::uint64_t, 5> have{bodies_.size(), spring_links_.size(),
+                                            torsion_links_.size(), joints_.size(),
+                                            unsprings_.size()};
+    std::array<std::uint64_t, 5> n = have;
+    ar(n);
+    if (n != have) {
+      const auto text = [](const std::array<std::uint64_t, 5>& c) {
+        return std::to_string(c[0]) + " bodies, " + std::to_string(c[1]) + " springs, " +
+               std::to_string(c[2]) + " torsion springs, " + std::to_string(c[3]) + " joints, " +
+               std::to_string(c[4]) + " unspring rules";
+      };
+      throw InputError("checkpoint: body system with " + text(n) + " is invalid; valid: " +
+                       text(have) + " (the system this program makes, in the same order)");
+    }
+    external_force_.resize(bodies_.size(), Vec3::Zero());
+    external_torque_.resize(bodies_.size(), Vec3::Zero());
+    ar(bodies_.position, bodies_.velocity, bodies_.omega, bodies_.orientation, bodies_.force,
+       bodies_.torque, external_force_, external_torque_);
+    // a spring being unloaded by a rule points to the rule's curve: saved as (rule, curve)
+    std::vector<SpringState> states = spring_states_;
+    std::vector<std::pair<std::int64_t, std::int64_t>> curve(states.size(), {-1, -1});
+    if constexpr (!Archive::reading) {
+      for (std::size_t s = 0; s < states.size(); ++s) {
+        for (std::size_t u = 0; u < unsprings_.size() && states[s].rule_unload; ++u) {
+          const auto& unload = unsprings_[u].rule().unload;
+          for (std::size_t k = 0; k < unload.size(); ++k)
+            if (&unload[k].second == states[s].rule_unload)
+              curve[s] = {static_cast<std::int64_t>(u), static_cast<std::int64_t>(k)};
+        }
+        states[s].rule_unload = nullptr;
+      }
+    }
+    ar(states, curve);
+    if constexpr (Archive::reading) {
+      for (std::size_t s = 0; s < states.size(); ++s) {
+        const auto [u, k] = curve[s];
+        if (u < 0) continue;
+        if (static_cast<std::size_t>(u) >= unsprings_.size() ||
+            k >= static_cast<std::int64_t>(
+                     unsprings_[static_cast<std::size_t>(u)].rule().unload.size()))
+          throw InputError("checkpoint: unloading curve of spring " + std::to_string(s) +
+                           " is invalid; valid: a curve of an unspring rule of this system");
+        states[s].rule_unload = &unsprings_[static_cast<std::size_t>(u)]
+                                     .rule()
+                                     .unload[static_cast<std::size_t>(k)]
+                                     .second;
+      }
+      spring_states_ = std::move(states);
+    }
+    ar(spring_results_, spring_masses_, torsion_results_, joint_results_);
+    for (auto& u : unsprings_)
+      ar(u);
+    ar(time_, h_, steps_, initialized_, joint_drifts_);
+  }
 
   /// The number of drifts made in the last step to close the joint gaps (1 without joints).
   int joint_drifts() const noexcept { return joints_.empty() ? 1 : joint_drifts_; }

@@ -109,6 +109,11 @@ struct TorsionResult {
   Vec3 rates = Vec3::Zero();                                    ///< their rates [rad/s]
   Vec3 spring_torque = Vec3::Zero();                            ///< elastic parts of T_a [N m]
   Vec3 total_torque = Vec3::Zero();                             ///< T_a (elastic + damping) [N m]
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(torque, x, y, z, angles, rates, spring_torque, total_torque);
+  }
 };
 
 namespace detail {

@@ -151,6 +151,12 @@ public:
   int count() const noexcept { return count_; }
   const UnspringRule& rule() const noexcept { return rule_; }
 
+  /// The rule's state in a checkpoint (BodySystem::serialize).
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(calls_, count_, fired_, activated_);
+  }
+
 private:
   double entity_value(const SpringResult& r) const {
     switch (rule_.entity) {
