@@ -58,6 +58,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -930,12 +931,13 @@ public:
     if (params_.track_dissipation && std::isnan(elastic_start_)) elastic_start_ = elastic_energy();
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
-        // forces at the initial positions; histories are not advanced by this evaluation
-        auto saved = history_;
-        auto saved_w = wall_history_;
+        // forces at the initial positions; histories are not advanced by this evaluation (only
+        // the entries with a history are kept aside: at a first start there are none)
+        auto saved = keep_histories(history_);
+        auto saved_w = keep_histories(wall_history_);
         compute_forces(time_, false);
-        history_ = saved;
-        wall_history_ = saved_w;
+        restore_histories(history_, saved);
+        restore_histories(wall_history_, saved_w);
         call_stages<Hook::after_forces>();
       }
     }
@@ -1558,12 +1560,71 @@ private:
     if (SearchT::due(params_.search, steps_since_rebuild_, far)) rebuild();
   }
 
+  /// The entries of `hist` that are not blank, with their indices.
+  static std::vector<std::pair<std::size_t, History>>
+  keep_histories(const std::vector<History>& hist) {
+    std::vector<std::pair<std::size_t, History>> kept;
+    if constexpr (!Contact::template stateless<D>)
+      for (std::size_t e = 0; e < hist.size(); ++e)
+        if (!blank(hist[e])) kept.emplace_back(e, hist[e]);
+    return kept;
+  }
+  /// Sets `hist` to the entries kept by keep_histories, blank elsewhere.
+  static void restore_histories(std::vector<History>& hist,
+                                const std::vector<std::pair<std::size_t, History>>& kept) {
+    if constexpr (!Contact::template stateless<D>) {
+      std::fill(hist.begin(), hist.end(), History{});
+      for (const auto& [e, h] : kept)
+        hist[e] = h;
+    }
+  }
+
+  /// True if h is bytewise a value-initialised history: nothing to carry over. (A history equal
+  /// in value but not in bytes, e.g. with -0.0, counts as not blank: it is merely kept.)
+  static bool blank(const History& h) {
+    static_assert(std::is_trivially_copyable_v<History>,
+                  "grain: a model's per-contact History must be trivially copyable");
+    static const History zero{};
+    return std::memcmp(static_cast<const void*>(&h), static_cast<const void*>(&zero),
+                       sizeof(History)) == 0;
+  }
+  /// Removes the entries with a blank history from a CSR list and its histories, in place, and
+  /// frees the space.
+  static void drop_blank_entries(std::vector<std::uint32_t>& offsets,
+                                 std::vector<std::uint32_t>& entries, std::vector<History>& hist) {
+    if (hist.size() != entries.size()) return; // no histories (first build)
+    std::uint32_t out = 0, begin = offsets[0];
+    for (std::size_t i = 0; i + 1 < offsets.size(); ++i) {
+      const std::uint32_t end = offsets[i + 1];
+      for (std::uint32_t e = begin; e < end; ++e)
+        if (!blank(hist[e])) {
+          entries[out] = entries[e];
+          hist[out] = hist[e];
+          ++out;
+        }
+      begin = end;
+      offsets[i + 1] = out;
+    }
+    entries.resize(out);
+    hist.resize(out);
+    entries.shrink_to_fit();
+    hist.shrink_to_fit();
+  }
+
   void rebuild() {
     auto& p = particles_;
     const std::size_t n = p.size();
     collect_wall_loads(); // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(list_);
     std::vector<History> old_hist = std::move(history_), old_whist = std::move(wall_history_);
+    // the new list will be about as long as the old one (one allocation instead of doublings)
+    list_.partners.reserve(old.partners.size() + old.partners.size() / 16);
+    // only the entries with a history are looked up: the others go before the new list is made
+    // (the peak memory of a rebuild holds both lists)
+    if constexpr (!Contact::template stateless<D>) {
+      drop_blank_entries(old.offsets, old.partners, old_hist);
+      drop_blank_entries(old.wall_offsets, old.walls, old_whist);
+    }
     std::vector<std::uint32_t> perm;
     const double reach = skin_ + cutoff_;
     if constexpr (SearchT::sorts) {
