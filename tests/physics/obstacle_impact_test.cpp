@@ -313,3 +313,67 @@ TEST_CASE("obstacle: pushed by a time-function velocity, it throws a sphere at r
     CHECK(std::abs(v_ob / v_plane - 1) < 1e-9);
   }
 }
+
+namespace {
+
+/// A sphere (radius 1e-3 m, material 0) falls without gravity at 0.1 m/s onto triangle `t` of a
+/// 2-triangle square obstacle whose triangles have materials 1 and 2 (per-triangle materials);
+/// the pairs (0, 1) and (0, 2) have restitutions 0.5 and 0.8, the pair (0, 2) a stiffness of
+/// 4e3 N/m instead of 1e3 N/m. Returns the rebound velocity over the impact velocity and the
+/// wall materials seen by the contacts.
+double triangle_restitution(int t, std::vector<std::uint32_t>& seen) {
+  const double r = 1e-3, v0 = 0.1, K = 1e3;
+  const double m = 2500.0 * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double l = std::log(0.8);
+  const double zeta = -l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+  // the shorter of the two contacts: k = 4e3 N/m, e = 0.8
+  const double tc = std::numbers::pi / (std::sqrt(4.0 * K / m) * std::sqrt(1 - zeta * zeta));
+  LsdSim::Params prm;
+  prm.time_step = tc / 2000;
+  prm.contact.normal.stiffness = K;
+  prm.contact.normal.no_cohesion = false;
+  LsdSim sim(prm);
+  const auto ball = sim.add_material(material(0.9));
+  const auto soft = sim.add_material(material(0.9));
+  const auto stiff = sim.add_material(material(0.9));
+  sim.set_pair(ball, soft, {.restitution = 0.5});
+  sim.set_pair(ball, stiff, {.restitution = 0.8});
+  LsdContact::Params p = prm.contact;
+  p.normal.stiffness = 4.0 * K;
+  sim.set_pair_parameters(ball, stiff, p);
+  const walls::TriangleMesh square =
+      moved(square2(), 0.01 * Eigen::Matrix3d::Identity(), Vec3::Zero());
+  const auto ob = add_obstacle(sim, square, {.name = "two colours", .materials = {soft, stiff}});
+  for (std::uint32_t k = 0; k < ob.count; ++k)
+    seen.push_back(sim.walls()[ob.wall(k)].options.material);
+  // triangle 0 is (0, 0)-(1, 0)-(1, 1) (y < x), triangle 1 is (0, 0)-(1, 1)-(0, 1)
+  const Vec3 above = t == 0 ? Vec3(0.007, 0.002, 0.0) : Vec3(0.002, 0.007, 0.0);
+  sim.add_particle({.position = above + Vec3(0, 0, r * (1 + 1e-12)),
+                    .radius = r,
+                    .material = ball,
+                    .velocity = Vec3(0, 0, -v0)});
+  bool touched = false;
+  for (long s = 0; s < 100000; ++s) {
+    sim.step();
+    const bool touching = sim.contact_counts().second > 0;
+    if (touching) touched = true;
+    if (touched && !touching) break;
+  }
+  REQUIRE(touched);
+  return sim.particles().velocity[0].z() / v0;
+}
+
+} // namespace
+
+TEST_CASE("obstacle: each triangle contacts with the pair parameters of its own material") {
+  // Linear spring-dashpot: the rebound is e v0 exactly in continuous time; the time stepping
+  // (t_c/2000) errs by less than 1.1 n zeta omega0 dt e (n = 2): 1.9e-4 (e = 0.5, k = 1e3 N/m)
+  // and 2.0e-4 (e = 0.8, k = 4e3 N/m). Tolerance 1e-3.
+  std::vector<std::uint32_t> seen;
+  const double e0 = triangle_restitution(0, seen);
+  const double e1 = triangle_restitution(1, seen);
+  MESSAGE("restitution over triangle 0: ", e0, " (pair 0.5), over triangle 1: ", e1, " (pair 0.8)");
+  CHECK(seen == std::vector<std::uint32_t>{1, 2, 1, 2});
+  CHECK(std::abs(e0 - 0.5) < 1e-3);
+  CHECK(std::abs(e1 - 0.8) < 1e-3);
+}

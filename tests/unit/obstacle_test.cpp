@@ -572,6 +572,19 @@ TEST_CASE("obstacle input errors name the obstacle, the value and the valid rang
   e = message(square2(), bad);
   CHECK(has(e, "Obstacle 'hopper': reference point = (inf, 0, 0) is invalid"));
 
+  // per-triangle materials: one per triangle, each known
+  bad = o;
+  bad.materials = {k, k, k};
+  e = message(square2(), bad);
+  CHECK(has(e, "Obstacle 'hopper': number of materials = 3 is invalid; valid range: 0 (every "
+               "triangle uses material) or 2 (one per triangle)"));
+  bad.materials = {k};
+  CHECK(has(message(square2(), bad), "number of materials = 1 is invalid"));
+  bad.materials = {k, 5};
+  e = message(square2(), bad);
+  CHECK(has(e, "Obstacle 'hopper': triangle 1 material = 5 is invalid; valid range: [0, 1) "
+               "(indices returned by add_material)"));
+
   bad = o;
   bad.flat_angle = 2.0;
   e = message(square2(), bad);
@@ -579,6 +592,13 @@ TEST_CASE("obstacle input errors name the obstacle, the value and the valid rang
 
   // nothing was added by the failed calls
   CHECK(sim.walls().empty());
+
+  // per-triangle materials: triangle k (wall first_wall + k) gets materials[k]
+  const auto k2 = sim.add_material(material());
+  const auto ob =
+      add_obstacle(sim, square2(), {.name = "two", .material = k, .materials = {k2, k}});
+  CHECK(sim.walls()[ob.wall(0)].options.material == k2);
+  CHECK(sim.walls()[ob.wall(1)].options.material == k);
 }
 
 TEST_CASE("obstacle from a list of triangles: equal corners become shared vertices") {

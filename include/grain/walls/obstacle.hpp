@@ -14,7 +14,8 @@
 /// \endcode
 ///
 /// An obstacle is one triangle wall per triangle (in the mesh's order, at consecutive wall
-/// indices), all with the reference point as pivot and the same velocity functions, and the
+/// indices), all with the reference point as pivot and the same velocity functions, each with
+/// the obstacle's material or, with `materials`, its own (Parmec's per-triangle colours), and the
 /// mesh's features (walls/mesh_features.hpp), so that every contact of a sphere with the mesh is
 /// counted once: a face contact where the sphere is over a face (one triangle where it is over a
 /// shared edge or vertex of a flat patch), an edge contact only in the wedge of a convex edge, a
@@ -51,7 +52,11 @@ namespace grain {
 /// Options of an obstacle.
 struct ObstacleOptions {
   std::string name = "obstacle"; ///< used in error messages; wall k is named "<name>[k]"
-  std::uint32_t material = 0;    ///< index returned by add_material (all triangles)
+  std::uint32_t material = 0;    ///< index returned by add_material (every triangle)
+  /// Per-triangle materials (Parmec's list of OBSTACLE colours): empty, every triangle uses
+  /// `material`; otherwise one index returned by add_material per triangle, in the mesh's
+  /// order (triangle k, wall first_wall + k, gets materials[k]).
+  std::vector<std::uint32_t> materials{};
   /// Reference point [m]: the point that moves with `velocity` and about which the obstacle
   /// turns with `omega`.
   Vec3 reference_point = Vec3::Zero();
@@ -151,7 +156,9 @@ inline TriangleMesh triangle_mesh(std::span<const Triangle> triangles) {
 /// triangle, moving rigidly with `options.velocity` and `options.omega` about
 /// `options.reference_point`. Throws InputError (naming the obstacle, the value and the valid
 /// range) for an empty mesh, a non-finite vertex, a vertex index out of range, a degenerate
-/// triangle, a non-finite reference point, an unknown material or a negative temperature.
+/// triangle, a non-finite reference point, an unknown material, a `materials` list whose size is
+/// neither 0 nor the number of triangles or that holds an unknown material, or a negative
+/// temperature.
 template <class Sim>
 Obstacle add_obstacle(Sim& sim, const walls::TriangleMesh& mesh,
                       const ObstacleOptions& options = {}) {
@@ -164,6 +171,15 @@ Obstacle add_obstacle(Sim& sim, const walls::TriangleMesh& mesh,
   const auto materials = sim.materials().size();
   detail::require(options.material < materials, obj, "material", options.material,
                   "[0, " + std::to_string(materials) + ") (indices returned by add_material)");
+  const std::size_t nt = mesh.triangles.size();
+  detail::require(options.materials.empty() || options.materials.size() == nt, obj,
+                  "number of materials", options.materials.size(),
+                  "0 (every triangle uses material) or " + std::to_string(nt) +
+                      " (one per triangle)");
+  for (std::size_t f = 0; f < options.materials.size(); ++f)
+    detail::require(options.materials[f] < materials, obj,
+                    ("triangle " + std::to_string(f) + " material").c_str(), options.materials[f],
+                    "[0, " + std::to_string(materials) + ") (indices returned by add_material)");
   const double t = sim.time();
   if (options.temperature) {
     const double t0 = options.temperature->value(0.0);
@@ -183,7 +199,7 @@ Obstacle add_obstacle(Sim& sim, const walls::TriangleMesh& mesh,
     tri.origin = options.reference_point;
     WallOptions<3> w;
     w.name = options.name + "[" + std::to_string(f) + "]";
-    w.material = options.material;
+    w.material = options.materials.empty() ? options.material : options.materials[f];
     w.has_pivot = true;
     w.pivot = options.reference_point;
     w.temperature = options.temperature;
