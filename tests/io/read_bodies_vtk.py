@@ -3,13 +3,17 @@ VTK's own reader and compares them with the expected.json written next to them.
 
 Usage: read_bodies_vtk.py <directory>
 
-For every series (ASCII and binary) and kind (bodies, springs, torsion springs, joints): the files are numbered
+For every series (ASCII and binary) and kind (bodies, meshes, springs, torsion springs, joints): the files are numbered
 000000 ... N-1 with N the number of outputs and listed with their times in the .vtk.series file;
 each is legacy polydata in the series' format with 'grain <kind> t = <time>' in its header (a
 binary file is first walked with Python's struct); bodies and joints are points with one vertex
 each (torsion springs at the centre of their body 1), springs one line each between their two points; the fields have the expected names,
 component counts and types, and every value equals the system's to a relative 1e-12 (17
-significant digits are written). Uses the helpers of read_vtk.py. Exits with status 1 and a
+significant digits are written). The meshes file holds the boundary faces of the mesh body as
+polygons: 10 quadrilaterals, each on four of the mesh's nodes at their world positions (1e-12),
+turning counter-clockwise about the outward normal, with cell data `body`, `color` (the listed
+faces' colours, the global colour elsewhere) and `velocity` (v + omega x (centroid - c)). Uses
+the helpers of read_vtk.py. Exits with status 1 and a
 message per mismatch if anything differs.
 """
 
@@ -26,7 +30,7 @@ KINDS = {
         "body": (1, True, None), "velocity": (3, False, "velocity"),
         "omega": (3, False, "omega"), "force": (3, False, "force"),
         "torque": (3, False, "torque"), "mass": (1, False, "mass"),
-        "orientation": (4, False, "orientation")}),
+        "orientation": (4, False, "orientation"), "radius": (1, False, "radius")}),
     "springs": ("springs", "cell", {
         "spring": (1, True, None), "force": (3, False, "force"),
         "total_force": (1, False, "total_force"), "elastic_force": (1, False, "elastic_force"),
@@ -106,6 +110,87 @@ def check_file(path, kind, frame, fmt):
                 rv.check_scalar(where, name, got[0], e[k])
 
 
+MESH_FIELDS = {"body": (1, True), "color": (1, True), "velocity": (3, False)}
+
+
+def check_meshes(path, frame, fmt, expected):
+    rv.check_format(path, fmt)
+    if fmt == "binary" and not rv.check_binary_layout(path):
+        return
+    poly, header = rv.read_polydata(path)
+    if poly is None:
+        return
+    rv.check_header(path, header, "meshes", frame["time"])
+    rv.check_points_double(path, poly)
+    (mesh,) = frame["meshes"]
+    faces = expected["mesh_faces"]
+    counts = (poly.GetNumberOfVerts(), poly.GetNumberOfLines(), poly.GetNumberOfPolys(),
+              poly.GetNumberOfStrips())
+    if counts != (0, 0, faces, 0):
+        rv.fail(path, f"(vertices, lines, polygons, strips) = {counts}, expected (0, 0, {faces}, 0)")
+        return
+    data = poly.GetCellData()
+    names = {data.GetArrayName(k) for k in range(data.GetNumberOfArrays())}
+    if names != set(MESH_FIELDS):
+        rv.fail(path, f"fields {sorted(names)}, expected {sorted(MESH_FIELDS)}")
+        return
+    arrays = {name: rv.get_array(path, data, name, c, integral)
+              for name, (c, integral) in MESH_FIELDS.items()}
+    if any(a is None for a in arrays.values()):
+        return
+    nodes = mesh["nodes"]
+    scale = max(abs(x) for n in nodes for x in n)
+    listed = {frozenset(f): c for f, c in expected["listed_faces"]}
+    colours = {}
+    seen = set()
+    c = mesh["position"]
+    v, w = mesh["velocity"], mesh["omega"]
+    for cell in range(faces):
+        where = f"{path}: face {cell}"
+        ids = rv.cell_point_ids(poly, cell)
+        pts = [poly.GetPoint(k) for k in ids]
+        # every point is the world position of a mesh node (relative 1e-12)
+        face = []
+        for p in pts:
+            match = [n for n, x in enumerate(nodes)
+                     if all(abs(a - b) <= rv.RTOL * scale for a, b in zip(p, x))]
+            if len(match) != 1:
+                rv.fail(where, f"point {p} is not the world position of one mesh node")
+                break
+            face.append(match[0])
+        else:
+            key = frozenset(face)
+            if len(face) != 4 or len(key) != 4 or key in seen:
+                rv.fail(where, f"nodes {face}: expected four different nodes of a new face")
+            seen.add(key)
+            colour = int(arrays["color"].GetTuple(cell)[0])
+            colours[colour] = colours.get(colour, 0) + 1
+            want = listed.get(key, expected["global_colour"])
+            if colour != want:
+                rv.fail(where, f"nodes {sorted(face)}: color {colour}, expected {want}")
+        if int(arrays["body"].GetTuple(cell)[0]) != mesh["body"]:
+            rv.fail(where, f"body {arrays['body'].GetTuple(cell)[0]}, expected {mesh['body']}")
+        # the outward normal (Newell's) points away from the centre of the (convex) body
+        centroid = [sum(p[k] for p in pts) / len(pts) for k in range(3)]
+        normal = [0.0, 0.0, 0.0]
+        for a, b in zip(pts, pts[1:] + pts[:1]):
+            normal[0] += (a[1] - b[1]) * (a[2] + b[2])
+            normal[1] += (a[2] - b[2]) * (a[0] + b[0])
+            normal[2] += (a[0] - b[0]) * (a[1] + b[1])
+        if sum(n * (x - y) for n, x, y in zip(normal, centroid, c)) <= 0.0:
+            rv.fail(where, f"normal {normal} points into the body")
+        # the velocity of the material point at the face centroid: v + omega x (x - c)
+        r = [x - y for x, y in zip(centroid, c)]
+        want = [v[0] + w[1] * r[2] - w[2] * r[1], v[1] + w[2] * r[0] - w[0] * r[2],
+                v[2] + w[0] * r[1] - w[1] * r[0]]
+        rv.check_vector(where, "velocity", arrays["velocity"].GetTuple(cell), want)
+    want_counts = {expected["global_colour"]: faces - len(listed)}
+    for colour in listed.values():
+        want_counts[colour] = want_counts.get(colour, 0) + 1
+    if colours != want_counts:
+        rv.fail(path, f"colour counts {colours}, expected {want_counts}")
+
+
 def main():
     if len(sys.argv) != 2:
         print("usage: read_bodies_vtk.py <directory>", file=sys.stderr)
@@ -119,6 +204,17 @@ def main():
     wanted = set()
     checked = 0
     for sname, fmt in expected["series"].items():
+        wanted.add(f"{sname}_meshes.vtk.series")
+        rv.check_series_file(directory, sname, "meshes", frames)
+        for k, frame in enumerate(frames):
+            name = f"{sname}_meshes_{k:06d}.vtk"
+            wanted.add(name)
+            path = os.path.join(directory, name)
+            if not os.path.exists(path):
+                rv.fail(path, "missing")
+                continue
+            check_meshes(path, frame, fmt, expected)
+            checked += 1
         for kind in KINDS:
             wanted.add(f"{sname}_{kind}.vtk.series")
             rv.check_series_file(directory, sname, kind, frames)
@@ -137,6 +233,12 @@ def main():
     # the set-up is not degenerate: some spring is loaded, some joint carries a load
     if not any(abs(s["total_force"]) > 0 for f in frames for s in f["springs"]):
         rv.fail(directory, "no spring carries a force: the set-up does not test the fields")
+    # some body has a display radius, and the mesh body turns and moves
+    if not any(b["radius"] > 0 for f in frames for b in f["bodies"]):
+        rv.fail(directory, "no body has a radius: the set-up does not test the field")
+    first, last = frames[0]["meshes"][0]["nodes"], frames[-1]["meshes"][0]["nodes"]
+    if max(abs(a - b) for x, y in zip(first, last) for a, b in zip(x, y)) < 1e-4:
+        rv.fail(directory, "the mesh body does not move: the set-up does not test the poses")
     if rv.failures:
         for message in rv.failures[:50]:
             print(f"read_bodies_vtk: MISMATCH {message}", file=sys.stderr)

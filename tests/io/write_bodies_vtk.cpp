@@ -1,10 +1,14 @@
-// Writes the legacy VTK files of a small body system (bodies, springs of every geometry, ball
-// joints) with two grain::bodies::body_vtk writers (ASCII and binary) in one io::every_steps,
-// together with expected.json: the system's state at every output, taken from its accessors.
+// Writes the legacy VTK files of a small body system (bodies, one of them converted from a sphere,
+// a mesh body of two hexahedra with two face colours, springs of every geometry, ball joints)
+// with two grain::bodies::body_vtk writers (ASCII and binary) in one io::every_steps, together
+// with expected.json: the system's state at every output, taken from its accessors, and for the
+// mesh body the world positions of all its mesh nodes (from the mesh as given and the body's
+// pose, not from the surface), its pose and the colours of its listed faces.
 // read_bodies_vtk.py reads the files back with VTK and compares them with expected.json.
 //
 // Usage: grain_write_bodies_vtk <output directory>
 
+#include <grain/bodies/mesh.hpp>
 #include <grain/bodies/output.hpp>
 #include <grain/bodies/system.hpp>
 #include <grain/io/console.hpp>
@@ -44,19 +48,47 @@ gb::RigidBody body(double m, const Vec3& x, const Vec3& v, const Vec3& w) {
   return b;
 }
 
+/// Two unit cubes side by side along x (nodes 0-7 and 1, 8, 9, 2, 5, 10, 11, 6), sharing the
+/// face x = 1, turned about (1, 2, 3) by 0.6 rad and moved by (0.5, -1, 2).
+gb::Mesh two_cubes() {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.6, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  gb::Mesh m;
+  for (const Vec3& x :
+       {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 0, 1),
+        Vec3(1, 1, 1), Vec3(0, 1, 1), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1), Vec3(2, 1, 1)})
+    m.nodes.push_back(r * (0.4 * x) + Vec3(0.5, -1.0, 2.0));
+  m.elements = {{{0, 1, 2, 3, 4, 5, 6, 7}, 800.0}, {{1, 8, 9, 2, 5, 10, 11, 6}, 800.0}};
+  return m;
+}
+/// Global colour 3; the end faces x = 0 and x = 2 in colour 5 (listed in other node orders).
+const std::vector<long> kColours{3, 4, 7, 0, 4, 3, 5, 4, 10, 11, 9, 8, 5};
+
 /// Records the system's state at every call as a JSON frame.
 struct Recorder {
   std::vector<std::string>* frames;
+  const gb::Mesh* mesh;
+  Vec3 centre; // the mesh's centre of mass as given
   void operator()(const gb::BodySystem& s) const {
     const auto& b = s.bodies();
-    std::string f = "{\"time\": " + num(s.time()) + ", \"bodies\": [";
+    std::string f = "{\"time\": " + num(s.time()) + ", \"meshes\": [";
+    for (std::size_t k = 0; k < s.mesh_count(); ++k) {
+      const std::size_t i = s.mesh_body_index(k);
+      f += std::string(k ? ", " : "") + "{\"body\": " + std::to_string(i) +
+           ", \"position\": " + vec(b.position[i]) + ", \"velocity\": " + vec(b.velocity[i]) +
+           ", \"omega\": " + vec(b.omega[i]) + ", \"nodes\": [";
+      for (std::size_t n = 0; n < mesh->nodes.size(); ++n)
+        f += std::string(n ? ", " : "") + vec(gb::to_world(b, i, mesh->nodes[n] - centre));
+      f += "]}";
+    }
+    f += "], \"bodies\": [";
     for (std::size_t i = 0; i < b.size(); ++i) {
       const Eigen::Quaterniond q(b.orientation[i] * b.axes[i].conjugate());
       f += std::string(i ? ", " : "") + "{\"position\": " + vec(b.position[i]) +
            ", \"velocity\": " + vec(b.velocity[i]) + ", \"omega\": " + vec(b.omega[i]) +
            ", \"force\": " + vec(b.force[i]) + ", \"torque\": " + vec(b.torque[i]) +
            ", \"mass\": " + num(b.mass[i]) + ", \"orientation\": [" + num(q.w()) + ", " +
-           num(q.x()) + ", " + num(q.y()) + ", " + num(q.z()) + "]}";
+           num(q.x()) + ", " + num(q.y()) + ", " + num(q.z()) +
+           "], \"radius\": " + num(b.radius[i]) + "}";
     }
     f += "], \"springs\": [";
     for (std::size_t i = 0; i < s.spring_count(); ++i) {
@@ -103,6 +135,11 @@ int main(int argc, char** argv) {
     s.add_body(body(1.0, Vec3(0.0, 0.0, -0.5), Vec3(0.1, 0.0, 0.0), Vec3(0.0, 0.2, 0.0)));
     s.add_body(body(2.0, Vec3(0.0, 0.0, -1.5), Vec3(0.0, 0.3, 0.0), Vec3(0.5, 0.0, 0.1)));
     s.add_body(body(0.5, Vec3(1.0, 0.5, -1.0), Vec3(0.0, 0.0, 0.2), Vec3(0.0, 0.0, 1.0)));
+    // a sphere converted to a body keeps its radius for display; a meshed body its surface
+    s.add_body(gb::sphere_body(0.05, 7800.0, Vec3(-1.0, 0.0, 0.5), Vec3(0.0, 0.1, 0.0)));
+    const gb::Mesh mesh = two_cubes();
+    s.add_mesh_body(mesh, gb::face_colors_from_list(kColours), Vec3(0.2, -0.1, 0.3),
+                    Vec3(1.0, -2.0, 0.5), "two cubes");
     s.add_ball_joint(0, Vec3::Zero());
     s.add_ball_joint(0, Vec3(0.0, 0.0, -1.0), 1);
     const Table k({-1.0, 1.0}, {-200.0, 200.0});
@@ -131,9 +168,12 @@ int main(int argc, char** argv) {
             grain::io::every_steps(
                 kStepsPerOutput, gb::body_vtk((dir / "sys").string()),
                 gb::body_vtk((dir / "sys_binary").string(), grain::io::VtkFormat::binary),
-                Recorder{&frames}));
+                Recorder{&frames, &mesh, gb::mass_properties(mesh).centre}));
     std::ofstream out(dir / "expected.json");
-    out << "{\"series\": {\"sys\": \"ascii\", \"sys_binary\": \"binary\"},\n \"frames\": [\n";
+    out << "{\"series\": {\"sys\": \"ascii\", \"sys_binary\": \"binary\"},\n";
+    // the mesh's faces as node sets with their colours: 10 boundary faces, the listed ones 5
+    out << " \"mesh_faces\": 10, \"global_colour\": 3, \"listed_faces\": [[[0, 3, 4, 7], 5], "
+           "[[8, 9, 10, 11], 5]],\n \"frames\": [\n";
     for (std::size_t k = 0; k < frames.size(); ++k)
       out << "  " << frames[k] << (k + 1 < frames.size() ? ",\n" : "\n");
     out << "]}\n";

@@ -1,5 +1,5 @@
-// Rigid bodies: integration against closed forms, mesh mass properties, equivalent mass and
-// critical time step, input validation.
+// Rigid bodies: integration against closed forms, mesh mass properties, mesh surfaces and face
+// colours, equivalent mass and critical time step, input validation.
 #include "../approx.hpp"
 #include "../errors.hpp"
 #include <algorithm>
@@ -215,8 +215,10 @@ TEST_CASE("bodies: sphere conversion") {
   const auto s = gb::sphere_body(r, rho, Vec3(1, 2, 3), Vec3(0.5, 0, 0), Vec3(0, 0, 10));
   CHECK(s.mass == approx(m).epsilon(1e-15));
   CHECK(rel_diff(s.inertia, Mat3::Identity() * (0.4 * m * r * r)) < 1e-15);
+  CHECK(s.radius == r); // the display radius
   gb::RigidBodies b;
   const auto i = b.add(s);
+  CHECK(b.radius[i] == r);
   CHECK(gb::kinetic_energy(b, i) ==
         approx(0.5 * m * 0.25 + 0.5 * 0.4 * m * r * r * 100.0).epsilon(1e-14));
 
@@ -228,12 +230,16 @@ TEST_CASE("bodies: sphere conversion") {
   p.orientation = {Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vec3::UnitZ()))};
   p.mass = {m};
   p.inertia = {0.4 * m * r * r};
+  p.radius = {r};
   const auto ps = gb::sphere_body(p, 0);
   CHECK(ps.mass == m);
+  CHECK(ps.radius == r);
   CHECK(rel_diff(ps.rotation, Eigen::AngleAxisd(0.3, Vec3::UnitZ()).toRotationMatrix()) < 1e-15);
   CHECK(rel_diff(ps.omega, Vec3(3, 0, 0)) == 0.0);
   const auto j = b.add(ps);
   CHECK(j == 1);
+  CHECK(b.radius[j] == r);
+  CHECK(b.radius[b.add(gb::RigidBody{})] == 0.0); // an analytical body has no shape
   CHECK(has(error_of([&] { (void)gb::sphere_body(p, 1); }), "particle index = 1"));
 }
 
@@ -422,6 +428,255 @@ TEST_CASE("bodies: mixed mesh under translation and rotation") {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Mesh surfaces and face colours
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+/// Area vector of a face (1/2 the cross product of the diagonals for a quadrilateral): its right-
+/// hand normal times its area.
+Vec3 area_vector(const gb::MeshSurface& s, std::size_t f) {
+  const auto& v = s.faces[f];
+  const auto x = [&](std::size_t k) { return s.nodes[v[k]]; };
+  return v.size() == 3 ? Vec3(0.5 * (x(1) - x(0)).cross(x(2) - x(0)))
+                       : Vec3(0.5 * (x(2) - x(0)).cross(x(3) - x(1)));
+}
+Vec3 face_centroid(const gb::MeshSurface& s, std::size_t f) {
+  Vec3 c = Vec3::Zero();
+  for (const auto v : s.faces[f])
+    c += s.nodes[v];
+  return c / static_cast<double>(s.faces[f].size());
+}
+/// The enclosed volume by the divergence theorem: sum over faces of centroid . A / 3 (exact for
+/// planar faces).
+double enclosed_volume(const gb::MeshSurface& s) {
+  double v = 0.0;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    v += face_centroid(s, f).dot(area_vector(s, f)) / 3.0;
+  return v;
+}
+/// For a convex body: every face's outward normal points away from the centre of mass (the
+/// origin of the local coordinates), i.e. the centre is on the inner side of every face plane.
+bool outward(const gb::MeshSurface& s) {
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    if (!(face_centroid(s, f).dot(area_vector(s, f)) > 0.0)) return false;
+  return true;
+}
+/// Number of faces with k nodes.
+std::size_t faces_of_size(const gb::MeshSurface& s, std::size_t k) {
+  return static_cast<std::size_t>(
+      std::count_if(s.faces.begin(), s.faces.end(), [&](const auto& f) { return f.size() == k; }));
+}
+
+/// Two unit cubes side by side along x (nodes 0-7 the first, 1, 8, 9, 2, 5, 10, 11, 6 the
+/// second), sharing the face x = 1.
+gb::Mesh two_cubes() {
+  std::vector<Vec3> x = cube_nodes();
+  for (const Vec3& p : {Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(2, 0, 1), Vec3(2, 1, 1)})
+    x.push_back(p);
+  return {x, {{{0, 1, 2, 3, 4, 5, 6, 7}, 1000.0}, {{1, 8, 9, 2, 5, 10, 11, 6}, 1000.0}}};
+}
+
+} // namespace
+
+TEST_CASE("bodies: surface of one and of two hexahedra") {
+  SUBCASE("one hexahedron: six outward quadrilaterals") {
+    const gb::Mesh mesh{cube_nodes(Vec3(2, -1, 3)), {{{0, 1, 2, 3, 4, 5, 6, 7}, 1000.0}}};
+    const auto s = gb::mesh_surface(mesh);
+    CHECK(s.faces.size() == 6);
+    CHECK(faces_of_size(s, 4) == 6);
+    CHECK(s.nodes.size() == 8);
+    CHECK(s.colors == std::vector<int>(6, 1));
+    CHECK(s.elements == std::vector<std::size_t>(6, 0));
+    CHECK(outward(s));
+    CHECK(enclosed_volume(s) == approx(1.0).epsilon(1e-12));
+    // local coordinates: relative to the centre (2.5, -0.5, 3.5); every face a unit square
+    // along an axis
+    for (std::size_t k = 0; k < s.nodes.size(); ++k)
+      CHECK((s.nodes[k].cwiseAbs() - Vec3::Constant(0.5)).norm() < 1e-15);
+    for (std::size_t f = 0; f < 6; ++f) {
+      const Vec3 a = area_vector(s, f);
+      CHECK(a.norm() == approx(1.0).epsilon(1e-15));
+      CHECK(a.cwiseAbs().maxCoeff() == approx(1.0).epsilon(1e-15));
+    }
+  }
+  SUBCASE("two hexahedra: the shared face is inside") {
+    const gb::Mesh mesh = two_cubes();
+    const auto s = gb::mesh_surface(mesh);
+    CHECK(s.faces.size() == 10);
+    CHECK(faces_of_size(s, 4) == 10);
+    CHECK(s.nodes.size() == 12);
+    CHECK(std::count(s.elements.begin(), s.elements.end(), 0) == 5);
+    CHECK(std::count(s.elements.begin(), s.elements.end(), 1) == 5);
+    CHECK(outward(s));
+    CHECK(enclosed_volume(s) == approx(2.0).epsilon(1e-12));
+    // the centre is (1, 0.5, 0.5): no face lies in the plane x = 1 (local x = 0)
+    for (std::size_t f = 0; f < s.faces.size(); ++f) {
+      bool all_in_middle = true;
+      for (const auto v : s.faces[f])
+        all_in_middle = all_in_middle && std::abs(s.nodes[v].x()) < 1e-15;
+      CHECK_FALSE(all_in_middle);
+    }
+  }
+}
+
+TEST_CASE("bodies: surfaces of a tetrahedron, a pyramid, a wedge and a mixed mesh") {
+  const double rho = 1000.0, a = 0.3, bb = 0.5, c = 0.7;
+  struct Case {
+    std::string name;
+    gb::Mesh mesh;
+    std::size_t triangles, quads;
+  };
+  const std::vector<Case> cases{
+      {"tetrahedron",
+       {{Vec3(0.1, 0, 0), Vec3(a, 0.05, 0), Vec3(0, bb, 0.1), Vec3(0, 0, c)},
+        {{{0, 1, 2, 3}, rho}}},
+       4,
+       0},
+      {"pyramid",
+       {{Vec3(-a / 2, -a / 2, 0), Vec3(a / 2, -a / 2, 0), Vec3(a / 2, a / 2, 0),
+         Vec3(-a / 2, a / 2, 0), Vec3(0.05, -0.02, c)},
+        {{{0, 1, 2, 3, 4}, rho}}},
+       4,
+       1},
+      {"wedge",
+       {{Vec3(0, 0, 0), Vec3(0, bb, 0), Vec3(a, 0, 0), Vec3(0, 0, c), Vec3(0, bb, c),
+         Vec3(a, 0, c)},
+        {{{0, 1, 2, 3, 4, 5}, rho}}},
+       2,
+       3},
+  };
+  double worst = 0.0; // largest relative error of the enclosed volume
+  for (const auto& k : cases) {
+    CAPTURE(k.name);
+    for (const bool turned : {false, true}) {
+      CAPTURE(turned);
+      gb::Mesh mesh = k.mesh;
+      if (turned)
+        for (auto& n : mesh.nodes)
+          n = some_rotation * n + Vec3(-3.0, 10.0, 0.25);
+      const auto s = gb::mesh_surface(mesh);
+      CHECK(faces_of_size(s, 3) == k.triangles);
+      CHECK(faces_of_size(s, 4) == k.quads);
+      CHECK(s.nodes.size() == mesh.nodes.size());
+      CHECK(outward(s));
+      const double v = gb::mass_properties(mesh).volume;
+      CHECK(enclosed_volume(s) == approx(v).epsilon(1e-12));
+      worst = std::max(worst, std::abs(enclosed_volume(s) / v - 1.0));
+    }
+  }
+  // the hexahedron, pyramid and wedge of the mixed-mesh test: 4 + 4 + 4 boundary faces (the
+  // cube's top and +x faces are shared), volume 1 + 0.2 + 0.3
+  std::vector<Vec3> x = cube_nodes();
+  x.push_back(Vec3(0.5, 0.5, 1.6));
+  x.push_back(Vec3(1.6, 0.0, 0.0));
+  x.push_back(Vec3(1.6, 1.0, 0.0));
+  for (auto& n : x)
+    n = some_rotation * n + Vec3(1.0, 2.0, 3.0);
+  const gb::Mesh mixed{
+      x, {{{0, 1, 2, 3, 4, 5, 6, 7}, 1.0}, {{4, 5, 6, 7, 8}, 2.0}, {{1, 9, 5, 2, 10, 6}, 3.0}}};
+  const auto s = gb::mesh_surface(mixed);
+  CHECK(s.faces.size() == 12);
+  for (std::size_t e = 0; e < 3; ++e)
+    CHECK(std::count(s.elements.begin(), s.elements.end(), e) == 4);
+  CHECK(faces_of_size(s, 3) == 6);
+  CHECK(enclosed_volume(s) == approx(1.5).epsilon(1e-12));
+  worst = std::max(worst, std::abs(enclosed_volume(s) / 1.5 - 1.0));
+  MESSAGE("surfaces: largest relative error of the enclosed volume ", worst);
+  // local coordinates relative to the centre of mass
+  const Vec3 centre = gb::mass_properties(mixed).centre;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (const auto v : s.faces[f]) {
+      bool found = false;
+      for (const Vec3& n : x)
+        found = found || (s.nodes[v] + centre - n).norm() < 1e-14;
+      CHECK(found);
+    }
+}
+
+TEST_CASE("bodies: face colours of a mesh surface") {
+  const gb::Mesh mesh = two_cubes();
+  // global 3; the outer face x = 2 (nodes 8, 9, 11, 10 in its cycle) given reversed from
+  // another node, the face x = 0 (0, 3, 7, 4) in no cyclic order
+  const gb::FaceColors colors{3, {{{10, 11, 9, 8}, 7}, {{7, 0, 4, 3}, 5}}};
+  const auto s = gb::mesh_surface(mesh, colors);
+  REQUIRE(s.faces.size() == 10);
+  CHECK(std::count(s.colors.begin(), s.colors.end(), 3) == 8);
+  CHECK(std::count(s.colors.begin(), s.colors.end(), 7) == 1);
+  CHECK(std::count(s.colors.begin(), s.colors.end(), 5) == 1);
+  for (std::size_t f = 0; f < s.faces.size(); ++f) {
+    // the local x of the face's nodes: -1 for x = 0, +1 for x = 2
+    double lo = 1e9, hi = -1e9;
+    for (const auto v : s.faces[f]) {
+      lo = std::min(lo, s.nodes[v].x());
+      hi = std::max(hi, s.nodes[v].x());
+    }
+    const int want = (hi < -0.999) ? 5 : (lo > 0.999) ? 7 : 3;
+    CHECK(s.colors[f] == want);
+    if (want == 7) CHECK(s.elements[f] == 1);
+    if (want == 5) CHECK(s.elements[f] == 0);
+  }
+  // Parmec's flat list gives the same colours; a global colour alone
+  const std::vector<long> flat{3, 4, 10, 11, 9, 8, 7, 4, 7, 0, 4, 3, 5};
+  const auto parsed = gb::face_colors_from_list(flat);
+  CHECK(parsed.global == 3);
+  CHECK(parsed.faces == colors.faces);
+  CHECK(gb::mesh_surface(mesh, parsed).colors == s.colors);
+  const std::vector<long> only{4};
+  const auto global = gb::face_colors_from_list(only);
+  CHECK(global.global == 4);
+  CHECK(global.faces.empty());
+  CHECK(gb::mesh_surface(mesh, global).colors == std::vector<int>(10, 4));
+  // a triangle of a tetrahedron, listed from its second node
+  const gb::Mesh tet{{Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)},
+                     {{{0, 1, 2, 3}, 1.0}}};
+  const auto t = gb::mesh_surface(tet, {2, {{{2, 3, 1}, 9}}});
+  CHECK(std::count(t.colors.begin(), t.colors.end(), 9) == 1);
+  CHECK(std::count(t.colors.begin(), t.colors.end(), 2) == 3);
+}
+
+TEST_CASE("bodies: face colour input errors name the object, the value and the range") {
+  const gb::Mesh mesh = two_cubes();
+  auto surface_error = [&](const gb::FaceColors& c) {
+    return error_of([&] { (void)gb::mesh_surface(mesh, c, "block"); });
+  };
+  std::string e = surface_error({1, {{{1, 2, 6, 5}, 2}}});
+  CHECK(has(e, "block face colour 0: nodes = (1, 2, 6, 5) is invalid; valid range: the nodes of "
+               "a boundary face (this face is shared by two elements"));
+  e = surface_error({1, {{{0, 1, 2, 3}, 2}, {{0, 1, 2}, 2}}});
+  CHECK(has(e, "block face colour 1: nodes = (0, 1, 2) is invalid; valid range: the nodes of a "
+               "boundary face (no element has a face with these nodes)"));
+  e = surface_error({1, {{{0, 1, 2, 3}, 0}}});
+  CHECK(has(e, "block face colour 0: colour = 0 is invalid; valid range: [1, inf)"));
+  e = surface_error({1, {{{0, 1, 2, 99}, 2}}});
+  CHECK(has(e, "block face colour 0: node = 99 is invalid; valid range: [0, 12) (the mesh's "
+               "nodes)"));
+  e = surface_error({1, {{{0, 1, 2, 3, 4}, 2}}});
+  CHECK(has(e, "block face colour 0: number of nodes = 5 is invalid; valid range: 3 or 4"));
+  e = surface_error({-2, {}});
+  CHECK(has(e, "block: global colour = -2 is invalid; valid range: [1, inf)"));
+  // a bad element is reported as by mass_properties
+  gb::Mesh inverted = mesh;
+  inverted.elements[1].nodes = {5, 10, 11, 6, 1, 8, 9, 2}; // numbered from the top face
+  CHECK(has(error_of([&] { (void)gb::mesh_surface(inverted, {}, "block"); }),
+            "block element 1 (hexahedron): volume = -1"));
+
+  auto list_error = [](std::vector<long> list) {
+    return error_of([&] { (void)gb::face_colors_from_list(list, "block"); });
+  };
+  CHECK(has(list_error({}), "block colour list: length = 0 is invalid; valid range: at least 1"));
+  CHECK(has(list_error({0}),
+            "block colour list: global colour = 0 is invalid; valid range: [1, 2147483647]"));
+  CHECK(has(list_error({1, 5, 0, 1, 2, 3, 4, 2}),
+            "block colour list entry 0: number of nodes = 5 is invalid; valid range: 3 or 4"));
+  CHECK(has(list_error({1, 3, 0, 1, 2, 2, 4, 0, 1, 2}),
+            "block colour list entry 1: list length = 10 is invalid; valid range: at least 12 "
+            "entries"));
+  CHECK(has(list_error({1, 3, 0, -1, 2, 2}), "block colour list entry 0: node = -1 is invalid"));
+  CHECK(has(list_error({1, 3, 0, 1, 2, -4}), "block colour list entry 0: colour = -4 is invalid"));
+}
+
+// ---------------------------------------------------------------------------------------------
 // Equivalent mass and critical step
 // ---------------------------------------------------------------------------------------------
 
@@ -529,6 +784,9 @@ TEST_CASE("bodies: invalid input") {
   CHECK(has(add([](gb::RigidBody& d) { d.rotation = -Mat3::Identity(); }), "det = +1"));
   CHECK(has(add([](gb::RigidBody& d) { d.velocity.x() = std::numeric_limits<double>::infinity(); }),
             "velocity"));
+  CHECK(has(add([](gb::RigidBody& d) { d.radius = -0.1; }),
+            "body A: radius = -0.1 is invalid; valid range: [0, inf) m"));
+  CHECK(has(add([](gb::RigidBody& d) { d.radius = std::nan(""); }), "radius = nan"));
   CHECK(b.size() == 0);
   CHECK(has(error_of([] { (void)gb::sphere_body(-1.0, 1000.0, Vec3::Zero()); }), "radius = -1"));
 

@@ -556,6 +556,7 @@ TEST_CASE("body system: VTK files of bodies, springs and joints") {
     CHECK(!std::filesystem::exists(dir / (std::string("sys_") + kind + "_000004.vtk")));
     CHECK(std::filesystem::exists(dir / (std::string("sys_") + kind + ".vtk.series")));
   }
+  CHECK(!std::filesystem::exists(dir / "sys_meshes_000000.vtk")); // no mesh bodies
   // the spring is drawn from point 1 to its foot on the plane z = -1
   const auto [p1, p2] = gb::spring_line(s, 0);
   CHECK((p2 - Vec3(p1.x(), p1.y(), -1.0)).norm() < 1e-15);
@@ -566,6 +567,46 @@ TEST_CASE("body system: VTK files of bodies, springs and joints") {
   CHECK(has(text.str(), "LINES 1 3\n2 0 1\n"));
   CHECK(has(text.str(), "SCALARS state int 1"));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("body system: a mesh body keeps its surface and colours") {
+  // a unit cube (hexahedron) and a pyramid on its top face, with the cube's bottom in colour 4
+  const gb::Mesh mesh{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
+                       Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1), Vec3(0.5, 0.4, 1.5)},
+                      {{{0, 1, 2, 3, 4, 5, 6, 7}, 1000.0}, {{4, 5, 6, 7, 8}, 500.0}}};
+  const gb::FaceColors colors{2, {{{3, 2, 1, 0}, 4}}};
+  gb::BodySystem s;
+  s.add_body(body(1.0, 0.01, Vec3(0.0, 0.0, -0.5)));
+  // a bad colour list adds nothing
+  CHECK(has(error_of([&] {
+              s.add_mesh_body(mesh, {2, {{{0, 1, 2}, 4}}}, Vec3::Zero(), Vec3::Zero(), "block");
+            }),
+            "block face colour 0: nodes = (0, 1, 2) is invalid"));
+  CHECK(s.bodies().size() == 1);
+  CHECK(s.mesh_count() == 0);
+  const auto i = s.add_mesh_body(mesh, colors, Vec3(0.1, 0, 0), Vec3(0, 0, 2), "block");
+  CHECK(i == 1);
+  CHECK(s.mesh_count() == 1);
+  CHECK(s.mesh_body_index(0) == 1);
+  const auto want = gb::mesh_surface(mesh, colors, "block");
+  const auto& got = s.mesh_surface(0);
+  CHECK(got.faces == want.faces);
+  CHECK(got.colors == want.colors);
+  CHECK(got.faces.size() == 9); // 5 faces of the cube and 4 of the pyramid: the top is shared
+  CHECK(std::count(got.colors.begin(), got.colors.end(), 4) == 1);
+  const auto b = gb::mesh_body(mesh);
+  CHECK(s.bodies().mass[i] == b.mass);
+  CHECK(s.bodies().position[i] == b.position);
+  CHECK(s.bodies().velocity[i] == Vec3(0.1, 0, 0));
+  CHECK(s.bodies().radius[i] == 0.0);
+  // the surface nodes sit at the mesh's nodes: world = position + rotation * local
+  for (const Vec3& x : got.nodes) {
+    bool found = false;
+    for (const Vec3& n : mesh.nodes)
+      found = found || (gb::to_world(s.bodies(), i, x) - n).norm() < 1e-14;
+    CHECK(found);
+  }
+  CHECK_THROWS_AS((void)s.mesh_surface(1), std::out_of_range);
 }
 
 TEST_CASE("body system: global damping slows a free body as exp(-d t)") {

@@ -4,7 +4,8 @@
 /// (tetrahedra, pyramids, wedges, hexahedra), each with its own density, computed exactly by
 /// splitting every element into tetrahedra and summing closed-form tetrahedron moments.
 ///
-/// Units (SI): coordinates m, density kg/m^3, volume m^3, mass kg, inertia kg m^2.
+/// Units (SI): coordinates m, density kg/m^3, volume m^3, mass kg, inertia kg m^2; colours are
+/// positive integers.
 ///
 /// ## Node ordering (VTK linear cells)
 /// Node numbers as in the VTK linear cells (types 10, 14, 13, 12), positive orientation:
@@ -51,6 +52,14 @@
 ///
 ///     J = (tr C' ) 1 - C',   C' = C - m c c^T.
 ///
+/// ## Boundary surface and face colours
+/// `mesh_surface` gives the faces of the elements that belong to exactly one element (faces are
+/// compared by their sets of nodes), as triangles and quadrilaterals numbered as in the element's
+/// outward face table (`detail::element_faces`: right-hand normals out of the element, hence out
+/// of the body), with the nodes they use in local coordinates about the centre of mass. Each face
+/// has a colour (Parmec's MESH `colors`, `FaceColors`): the global colour, or that of a listed
+/// face with the same set of nodes.
+///
 /// References: VTK file formats (Kitware), linear cell types 10, 12, 13, 14.
 
 #include <grain/bodies/rigid_body.hpp>
@@ -61,6 +70,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
@@ -144,6 +154,8 @@ inline const char* element_kind(std::size_t n) {
 /// Outward faces (right-hand normals pointing out of the element) in local node numbers; a
 /// triangle has its fourth entry equal to -1.
 inline std::span<const std::array<int, 4>> element_faces(std::size_t n) {
+  static constexpr std::array<std::array<int, 4>, 4> tetrahedron{
+      {{0, 2, 1, -1}, {0, 1, 3, -1}, {1, 2, 3, -1}, {2, 0, 3, -1}}};
   static constexpr std::array<std::array<int, 4>, 5> pyramid{
       {{0, 3, 2, 1}, {0, 1, 4, -1}, {1, 2, 4, -1}, {2, 3, 4, -1}, {3, 0, 4, -1}}};
   static constexpr std::array<std::array<int, 4>, 5> wedge{
@@ -151,6 +163,8 @@ inline std::span<const std::array<int, 4>> element_faces(std::size_t n) {
   static constexpr std::array<std::array<int, 4>, 6> hexahedron{
       {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}};
   switch (n) {
+  case 4:
+    return tetrahedron;
   case 5:
     return pyramid;
   case 6:
@@ -297,6 +311,175 @@ inline RigidBody mesh_body(const Mesh& mesh, const Vec3& velocity = Vec3::Zero()
   b.omega = omega;
   b.name = object;
   return b;
+}
+
+/// Face colours of a meshed body (Parmec's MESH `colors`): `global` for every boundary face that
+/// is not listed, and per-face overrides, each a face given by its nodes (3 or 4 mesh node
+/// indices, in any order and from any starting node: a face is matched by its set of nodes) and
+/// its colour. Colours are positive integers; a face listed twice takes its last colour.
+struct FaceColors {
+  int global = 1;
+  std::vector<std::pair<std::vector<std::size_t>, int>> faces{};
+};
+
+/// Face colours from Parmec's MESH flat list [gcolor, f1, n1 .. nf1, c1, f2, ...] (or [gcolor]
+/// alone): gcolor the global colour, f the number of nodes of a listed face (3 or 4), n its
+/// nodes, c its colour. Throws InputError for an empty list, a colour outside [1, INT_MAX], a
+/// face of another size, a negative node or a list that ends inside a face.
+inline FaceColors face_colors_from_list(std::span<const long> list,
+                                        const std::string& object = "mesh") {
+  const std::string obj = object + " colour list";
+  constexpr long max_colour = std::numeric_limits<int>::max();
+  const std::string colours = "[1, " + std::to_string(max_colour) + "] (a positive integer)";
+  grain::detail::require(!list.empty(), obj, "length", list.size(),
+                         "at least 1 entry (the global colour)");
+  grain::detail::require(list[0] > 0 && list[0] <= max_colour, obj, "global colour", list[0],
+                         colours);
+  FaceColors out;
+  out.global = static_cast<int>(list[0]);
+  std::size_t k = 1;
+  while (k < list.size()) {
+    const std::string name = obj + " entry " + std::to_string(out.faces.size());
+    const long n = list[k];
+    grain::detail::require(n == 3 || n == 4, name, "number of nodes", n,
+                           "3 or 4 (a triangle or a quadrilateral)");
+    const auto m = static_cast<std::size_t>(n);
+    grain::detail::require(k + m + 1 < list.size(), name, "list length", list.size(),
+                           "at least " + std::to_string(k + m + 2) + " entries");
+    std::vector<std::size_t> nodes;
+    for (std::size_t j = 0; j < m; ++j) {
+      const long node = list[k + 1 + j];
+      grain::detail::require(node >= 0, name, "node", node, "[0, inf) (a mesh node index)");
+      nodes.push_back(static_cast<std::size_t>(node));
+    }
+    const long c = list[k + m + 1];
+    grain::detail::require(c > 0 && c <= max_colour, name, "colour", c, colours);
+    out.faces.emplace_back(std::move(nodes), static_cast<int>(c));
+    k += m + 2;
+  }
+  return out;
+}
+
+/// The boundary surface of a meshed body: the faces of its elements that belong to exactly one
+/// element, as triangles or quadrilaterals.
+struct MeshSurface {
+  /// The nodes used by boundary faces, in local coordinates: relative to the body's centre of
+  /// mass in the mesh's axes, so that world = position + rotation * local [m].
+  std::vector<Vec3> nodes{};
+  /// 3 or 4 indices into `nodes` per face, ordered so that the right-hand normal points out of
+  /// the body (the element's outward orientation).
+  std::vector<std::vector<std::uint32_t>> faces{};
+  std::vector<int> colors{};           ///< colour of each face
+  std::vector<std::size_t> elements{}; ///< the element each face belongs to
+};
+
+namespace detail {
+
+/// A face's sorted node list, padded with the largest size_t for a triangle.
+inline std::array<std::size_t, 4> face_key(std::span<const std::size_t> nodes) {
+  std::array<std::size_t, 4> key;
+  key.fill(std::numeric_limits<std::size_t>::max());
+  std::copy(nodes.begin(), nodes.end(), key.begin());
+  std::sort(key.begin(), key.end());
+  return key;
+}
+
+inline std::string node_list_text(std::span<const std::size_t> nodes) {
+  std::string s = "(";
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    s += (k ? ", " : "") + std::to_string(nodes[k]);
+  return s + ")";
+}
+
+} // namespace detail
+
+/// The boundary surface of a mesh (see MeshSurface) with its face colours: faces in the order of
+/// their elements and, within an element, of the face tables of `detail::element_faces`; nodes in
+/// the order of first use, relative to the mesh's centre of mass (`mass_properties`). Validates
+/// the mesh as `mass_properties` does, and throws InputError (naming the object, the value and
+/// the valid range) for a colour <= 0, a listed face with other than 3 or 4 nodes, with an
+/// unknown node, or whose nodes are not those of a boundary face.
+inline MeshSurface mesh_surface(const Mesh& mesh, const FaceColors& colors = {},
+                                const std::string& object = "mesh") {
+  const MassProperties props = mass_properties(mesh, object);
+  grain::detail::require(colors.global > 0, object, "global colour", colors.global,
+                         "[1, inf) (a positive integer)");
+  // every face of every element, with its sorted nodes
+  struct Face {
+    std::array<std::size_t, 4> key;
+    std::size_t element;
+    std::array<int, 4> local;
+  };
+  std::vector<Face> all;
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const std::vector<std::size_t>& en = mesh.elements[e].nodes;
+    for (const auto& f : detail::element_faces(en.size())) {
+      std::array<std::size_t, 4> nodes{};
+      const std::size_t m = f[3] < 0 ? 3 : 4;
+      for (std::size_t j = 0; j < m; ++j)
+        nodes[j] = en[static_cast<std::size_t>(f[j])];
+      all.push_back({detail::face_key(std::span<const std::size_t>(nodes.data(), m)), e, f});
+    }
+  }
+  std::vector<std::size_t> order(all.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all[a].key < all[b].key; });
+  std::vector<bool> boundary(all.size(), false);
+  for (std::size_t k = 0; k < order.size();) {
+    std::size_t j = k + 1;
+    while (j < order.size() && all[order[j]].key == all[order[k]].key)
+      ++j;
+    if (j == k + 1) boundary[order[k]] = true;
+    k = j;
+  }
+  // boundary faces in element order, with the global colour
+  MeshSurface s;
+  std::vector<std::size_t> face_of(all.size(), 0);
+  std::vector<std::uint32_t> number(mesh.nodes.size(), std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (!boundary[k]) continue;
+    const Face& f = all[k];
+    const std::vector<std::size_t>& en = mesh.elements[f.element].nodes;
+    std::vector<std::uint32_t> face;
+    for (const int j : f.local) {
+      if (j < 0) break;
+      const std::size_t node = en[static_cast<std::size_t>(j)];
+      if (number[node] == std::numeric_limits<std::uint32_t>::max()) {
+        number[node] = static_cast<std::uint32_t>(s.nodes.size());
+        s.nodes.push_back(mesh.nodes[node] - props.centre);
+      }
+      face.push_back(number[node]);
+    }
+    face_of[k] = s.faces.size();
+    s.faces.push_back(std::move(face));
+    s.colors.push_back(colors.global);
+    s.elements.push_back(f.element);
+  }
+  // overrides, matched by their sets of nodes
+  for (std::size_t c = 0; c < colors.faces.size(); ++c) {
+    const auto& [nodes, colour] = colors.faces[c];
+    const std::string name = object + " face colour " + std::to_string(c);
+    grain::detail::require(colour > 0, name, "colour", colour, "[1, inf) (a positive integer)");
+    grain::detail::require(nodes.size() == 3 || nodes.size() == 4, name, "number of nodes",
+                           nodes.size(), "3 or 4 (a triangle or a quadrilateral)");
+    for (const std::size_t n : nodes)
+      grain::detail::require(n < mesh.nodes.size(), name, "node", n,
+                             "[0, " + std::to_string(mesh.nodes.size()) + ") (the mesh's nodes)");
+    const auto key = detail::face_key(nodes);
+    const auto it = std::lower_bound(
+        order.begin(), order.end(), key,
+        [&](std::size_t a, const std::array<std::size_t, 4>& k) { return all[a].key < k; });
+    const bool found = it != order.end() && all[*it].key == key;
+    grain::detail::require(found && boundary[*it], name, "nodes", detail::node_list_text(nodes),
+                           found ? "the nodes of a boundary face (this face is shared by two "
+                                   "elements: it is inside the body)"
+                                 : "the nodes of a boundary face (no element has a face with "
+                                   "these nodes)");
+    s.colors[face_of[*it]] = colour;
+  }
+  return s;
 }
 
 /// Elements from Parmec's MESH flat list [n, node_1 .. node_n, material, n, ...] with one density

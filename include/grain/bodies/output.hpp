@@ -37,13 +37,21 @@
 /// file is made), naming the valid ones.
 ///
 /// ## VTK
-/// `write_bodies_vtk`, `write_springs_vtk` and `write_joints_vtk` write one legacy VTK polydata
-/// file each (the conventions of io::vtk: "DataFile Version 3.0", ASCII or BINARY, the time in
-/// the header line `grain <kind> t = <time>`):
+/// `write_bodies_vtk`, `write_meshes_vtk`, `write_springs_vtk`, `write_torsion_springs_vtk` and
+/// `write_joints_vtk` write one legacy VTK polydata file each (the conventions of io::vtk:
+/// "DataFile Version 3.0", ASCII or BINARY, the time in the header line `grain <kind> t = <time>`):
 /// - bodies: the centres as points with one vertex each; point data `body` (int index),
 ///   `velocity` [m/s], `omega` [rad/s], `force` [N], `torque` [N m] (vectors), `mass` [kg],
 ///   `orientation` (4 components: the unit quaternion (w, x, y, z) of the reference-frame
-///   rotation Lambda);
+///   rotation Lambda), `radius` [m] (the display radius of a body converted from a sphere, 0
+///   for a body without a shape);
+/// - meshes (the bodies added by `add_mesh_body`; Parmec's 'MESH' output mode): the boundary
+///   faces of every mesh as polygons (triangles and quadrilaterals, right-hand normals pointing
+///   out of the body) on the surface nodes in world coordinates, x = c + Lambda X (X the node's
+///   local coordinates, c and Lambda the body's current pose); each mesh has its own points,
+///   meshes in the order of `add_mesh_body`. Cell data `body` (int body index), `color` (int
+///   face colour, Parmec's 'COLOR' entity), `velocity` [m/s] (vector: the velocity of the
+///   body's material point at the mean of the face's nodes, v + omega x (x_f - c));
 /// - springs: one line per spring from point 1 to point 2 (for a point-to-plane spring, to the
 ///   foot of point 1 on the plane); cell data `spring` (int index), `force` (vector: the force
 ///   on point 1) [N], `total_force` (F), `elastic_force` (SF), `friction_force` (FF) [N],
@@ -51,9 +59,10 @@
 /// - joints: the joint points on body 1 with one vertex each; point data `joint` (int index),
 ///   `reaction` (vector, on body 1) [N], `gap` [m].
 /// A file without cells has no data section. `body_vtk(prefix, format)` is an output action for
-/// io::every that writes `prefix_bodies_NNNNNN.vtk` (and `prefix_springs_...`,
-/// `prefix_joints_...` if the system has springs or joints) per call, and the ParaView series
-/// files `prefix_<kind>.vtk.series`.
+/// io::every that writes `prefix_bodies_NNNNNN.vtk` (and `prefix_meshes_...`,
+/// `prefix_springs_...`, `prefix_torsion_springs_...`, `prefix_joints_...` if the system has mesh
+/// bodies, springs, torsion springs or joints) per call, and the ParaView series files
+/// `prefix_<kind>.vtk.series`.
 
 #include <grain/bodies/system.hpp>
 #include <grain/core/error.hpp>
@@ -319,6 +328,50 @@ inline void write_bodies_vtk(const BodySystem& s, const std::string& path,
   o.field("orientation", n, [&](std::size_t k) {
     return d::orientation_value(Eigen::Quaterniond(b.orientation[k] * b.axes[k].conjugate()));
   });
+  o.field("radius", n, [&](std::size_t k) { return b.radius[k]; });
+  o.close(path);
+}
+
+/// Writes the boundary surfaces of the mesh bodies of a system, in world coordinates at the
+/// bodies' current poses, as legacy VTK polydata (see the file comment).
+inline void write_meshes_vtk(const BodySystem& s, const std::string& path,
+                             io::VtkFormat format = io::VtkFormat::ascii) {
+  namespace d = grain::io::detail;
+  const RigidBodies& b = s.bodies();
+  std::vector<Vec3> pts;
+  std::vector<std::vector<std::size_t>> cells;
+  std::vector<int> body, color;
+  std::vector<Vec3> velocity;
+  for (std::size_t k = 0; k < s.mesh_count(); ++k) {
+    const std::size_t i = s.mesh_body_index(k);
+    const MeshSurface& m = s.mesh_surface(k);
+    const Eigen::Matrix3d r = rotation(b, i);
+    const std::size_t base = pts.size();
+    for (const Vec3& x : m.nodes)
+      pts.push_back(b.position[i] + r * x);
+    for (std::size_t f = 0; f < m.faces.size(); ++f) {
+      std::vector<std::size_t> cell;
+      Vec3 centroid = Vec3::Zero();
+      for (const std::uint32_t v : m.faces[f]) {
+        cell.push_back(base + v);
+        centroid += pts[base + v];
+      }
+      centroid /= static_cast<double>(cell.size());
+      cells.push_back(std::move(cell));
+      body.push_back(static_cast<int>(i));
+      color.push_back(m.colors[f]);
+      velocity.push_back(point_velocity(b, i, centroid));
+    }
+  }
+  d::LegacyVtkFile o(path, format, "meshes", s.time());
+  o.points(pts.size(), [&](std::size_t k) { return d::xyz(pts[k]); });
+  o.cells("POLYGONS", cells);
+  const std::size_t m = cells.size();
+  if (m == 0) return o.close(path);
+  o.line("CELL_DATA " + std::to_string(m));
+  o.field("body", m, [&](std::size_t k) { return body[k]; });
+  o.field("color", m, [&](std::size_t k) { return color[k]; });
+  o.field("velocity", m, [&](std::size_t k) { return d::xyz(velocity[k]); });
   o.close(path);
 }
 
@@ -398,14 +451,14 @@ inline void write_torsion_springs_vtk(const BodySystem& s, const std::string& pa
   o.close(path);
 }
 
-/// Output action (for io::every): the bodies file, and the springs, torsion-springs and joints
-/// files if the system has them, numbered 000000, 000001, ..., and their series files.
+/// Output action (for io::every): the bodies file, and the meshes, springs, torsion-springs and
+/// joints files if the system has them, numbered 000000, 000001, ..., and their series files.
 struct BodyVtkWriter {
   std::string prefix;
   io::VtkFormat format = io::VtkFormat::ascii;
   int count = 0;
-  std::vector<std::pair<std::string, double>> body_files{}, spring_files{}, torsion_files{},
-      joint_files{};
+  std::vector<std::pair<std::string, double>> body_files{}, mesh_files{}, spring_files{},
+      torsion_files{}, joint_files{};
 
   void operator()(const BodySystem& s) {
     const std::filesystem::path base(prefix);
@@ -420,6 +473,7 @@ struct BodyVtkWriter {
       io::detail::write_series(prefix, kind, files);
     };
     one("bodies", write_bodies_vtk, body_files);
+    if (s.mesh_count() > 0) one("meshes", write_meshes_vtk, mesh_files);
     if (s.spring_count() > 0) one("springs", write_springs_vtk, spring_files);
     if (s.torsion_spring_count() > 0)
       one("torsion_springs", write_torsion_springs_vtk, torsion_files);

@@ -75,7 +75,9 @@
 
 namespace grain::bodies {
 
-/// Description of one rigid body, passed to `RigidBodies::add`.
+/// Description of one rigid body, passed to `RigidBodies::add`. `radius` is the radius of the
+/// sphere drawn at the centre in output (a body converted from a sphere keeps its radius); 0 = no
+/// shape. It is finite and >= 0, and never used in the dynamics.
 struct RigidBody {
   double mass = 1.0;                                      ///< [kg], finite, > 0
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();  ///< J_ref about the centre [kg m^2]
@@ -83,6 +85,7 @@ struct RigidBody {
   Vec3 position = Vec3::Zero();                           ///< centre of mass [m]
   Vec3 velocity = Vec3::Zero();                           ///< [m/s]
   Vec3 omega = Vec3::Zero();                              ///< spatial angular velocity [rad/s]
+  double radius = 0.0;                                    ///< display radius [m], output only
   std::string name = "rigid body";                        ///< used in error messages
 };
 
@@ -97,7 +100,8 @@ inline Eigen::Matrix3d inertia_tensor(double ixx, double iyy, double izz, double
 }
 
 /// A solid sphere of radius r [m] and density rho [kg/m^3] as a rigid body:
-/// m = 4/3 pi r^3 rho, J = 2/5 m r^2 (isotropic), reference frame = world frame.
+/// m = 4/3 pi r^3 rho, J = 2/5 m r^2 (isotropic), reference frame = world frame, display
+/// radius r.
 inline RigidBody sphere_body(double radius, double density, const Vec3& position,
                              const Vec3& velocity = Vec3::Zero(),
                              const Vec3& omega = Vec3::Zero()) {
@@ -110,12 +114,14 @@ inline RigidBody sphere_body(double radius, double density, const Vec3& position
   b.position = position;
   b.velocity = velocity;
   b.omega = omega;
+  b.radius = radius;
   b.name = "sphere body";
   return b;
 }
 
 /// Particle `i` of a 3D particle store (mass, isotropic inertia, orientation, position,
-/// velocity, angular velocity) as a rigid body; the reference frame is the particle's frame.
+/// velocity, angular velocity) as a rigid body; the reference frame is the particle's frame and
+/// the display radius the particle's radius.
 inline RigidBody sphere_body(const ParticleArrays<3>& p, std::size_t i) {
   grain::detail::require(i < p.size(), "sphere body", "particle index", i,
                          "[0, " + std::to_string(p.size()) + ")");
@@ -126,6 +132,7 @@ inline RigidBody sphere_body(const ParticleArrays<3>& p, std::size_t i) {
   b.position = p.position[i];
   b.velocity = p.velocity[i];
   b.omega = p.omega[i];
+  b.radius = p.radius[i];
   b.name = "sphere body (particle " + std::to_string(i) + ")";
   return b;
 }
@@ -209,13 +216,14 @@ struct RigidBodies {
   std::vector<Vec3> omega;                     ///< spatial angular velocity [rad/s]
   std::vector<Vec3> force;                     ///< world-frame force accumulator [N]
   std::vector<Vec3> torque;                    ///< world torque about the centre [N m]
+  std::vector<double> radius;                  ///< display radius (output only; 0: none) [m]
 
   std::size_t size() const { return mass.size(); }
 
   /// Validates and appends a body; returns its index. Throws InputError for a mass that is not
   /// finite and > 0, an inertia tensor that is not finite, symmetric and positive definite (or
-  /// violates J1 + J2 >= J3), a rotation that is not proper orthonormal, or a non-finite
-  /// position, velocity or angular velocity.
+  /// violates J1 + J2 >= J3), a rotation that is not proper orthonormal, a non-finite
+  /// position, velocity or angular velocity, or a display radius that is not finite and >= 0.
   std::size_t add(const RigidBody& b) {
     grain::detail::require_positive(b.name, "mass", b.mass);
     const detail::Principal pr = detail::principal(b.inertia, b.name);
@@ -226,6 +234,8 @@ struct RigidBodies {
                            "finite [m/s]");
     grain::detail::require(b.omega.allFinite(), b.name, "omega", b.omega.transpose(),
                            "finite [rad/s]");
+    grain::detail::require(std::isfinite(b.radius) && b.radius >= 0.0, b.name, "radius", b.radius,
+                           "[0, inf) m (display radius; 0 = no shape)");
     mass.push_back(b.mass);
     inv_mass.push_back(1.0 / b.mass);
     inertia.push_back(pr.moments);
@@ -237,6 +247,7 @@ struct RigidBodies {
     omega.push_back(b.omega);
     force.push_back(Vec3::Zero());
     torque.push_back(Vec3::Zero());
+    radius.push_back(b.radius);
     return size() - 1;
   }
 };

@@ -104,6 +104,7 @@
 ///   Wiley 2000, ch. 6 (critical step, Gershgorin bound).
 
 #include <grain/bodies/eqm.hpp>
+#include <grain/bodies/mesh.hpp>
 #include <grain/bodies/rigid_body.hpp>
 #include <grain/bodies/spring.hpp>
 #include <grain/bodies/torsion_spring.hpp>
@@ -245,6 +246,24 @@ public:
     external_torque_.resize(bodies_.size(), Vec3::Zero());
     return i;
   }
+
+  /// Adds the body of a meshed particle (mesh_body) and keeps its boundary surface with the face
+  /// colours for output (mesh_surface); returns the body index. Validates the mesh and the
+  /// colours before anything is added.
+  std::size_t add_mesh_body(const Mesh& mesh, const FaceColors& colors = {},
+                            const Vec3& velocity = Vec3::Zero(), const Vec3& omega = Vec3::Zero(),
+                            const std::string& name = "mesh") {
+    MeshSurface surface = bodies::mesh_surface(mesh, colors, name);
+    const std::size_t b = add_body(mesh_body(mesh, velocity, omega, name));
+    meshes_.emplace_back(b, std::move(surface));
+    return b;
+  }
+  /// Number of bodies added by add_mesh_body.
+  std::size_t mesh_count() const noexcept { return meshes_.size(); }
+  /// Body index of mesh k (k-th call of add_mesh_body).
+  std::size_t mesh_body_index(std::size_t k) const { return meshes_.at(k).first; }
+  /// Boundary surface of mesh k, in its body's local coordinates.
+  const MeshSurface& mesh_surface(std::size_t k) const { return meshes_.at(k).second; }
 
   /// Adds a translational spring between point1 of body1 and point2 of body2 (`world`: a fixed
   /// point), both in world coordinates now [m]; for `SpringGeometry::point_to_plane`, point2 is
@@ -1111,6 +1130,7 @@ private:
   long steps_ = 0;
   bool initialized_ = false;
   int joint_drifts_ = 0;
+  std::vector<std::pair<std::size_t, MeshSurface>> meshes_{}; ///< (body index, surface)
 };
 
 } // namespace grain::bodies
