@@ -217,6 +217,7 @@ TEST_CASE("coupled bodies: a converted sphere leaves contact and falls freely") 
   auto& c = sim.stage<gb::Coupling>();
   const auto b = c.convert(sim, a, {.mass = 0.5});
   CHECK(c.system().bodies().mass[b] == 0.5);
+  CHECK(c.system().bodies().radius[b] == r); // shown by the body output
   CHECK(c.particle_of(b) == -1);
   CHECK(sim.size() == 1);
   CHECK(sim.removed_ids() == std::vector<std::int64_t>{a});

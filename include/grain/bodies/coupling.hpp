@@ -118,6 +118,7 @@ private:
                                std::to_string(link[i].body) + ")");
     auto& p = sim.particles();
     RigidBody b = sphere_body(p, i);
+    b.radius = 0.0; // drawn by the particle output (the body output shows converted spheres)
     b.name = "body of particle " + std::to_string(id);
     const std::size_t k = system_.add_body(b);
     p.inv_mass[i] = 0.0; // the system moves it
