@@ -481,11 +481,13 @@ public:
     params_.gravity = g;
     gravity_fn_.reset();
     gravity_now_ = g;
+    ++gravity_revision_;
   }
   /// Gravity that changes in time [m/s^2] (each component a TimeFunction; 0 while inactive).
   void set_gravity(const VectorTimeFunction<D>& g) {
     gravity_fn_ = g;
     gravity_now_ = g(time_);
+    ++gravity_revision_;
   }
   /// Gravity acting at the last force evaluation (or the constant gravity) [m/s^2].
   V gravity() const { return gravity_fn_ ? gravity_now_ : params_.gravity; }
@@ -493,6 +495,8 @@ public:
   VectorTimeFunction<D> gravity_function() const {
     return gravity_fn_ ? *gravity_fn_ : VectorTimeFunction<D>(params_.gravity);
   }
+  /// Counts the calls of set_gravity (stages that keep a copy of gravity compare it).
+  std::uint64_t gravity_revision() const noexcept { return gravity_revision_; }
 
   /// Global damping that changes in time: force -c_t(t) v [c_t in N s/m] and torque -c_r(t) omega
   /// [c_r in N m s], replacing SimulationParams::damping_translational / damping_rotational.
@@ -878,7 +882,9 @@ public:
     // taken out here
     std::vector<std::uint32_t> kept(particles_.size());
     std::iota(kept.begin(), kept.end(), 0u);
-    if (!removal_requests_.empty()) {
+    const bool renumbered = !removal_requests_.empty();
+    if (renumbered) {
+      collect_wall_loads(); // before the particles are renumbered
       std::sort(removal_requests_.begin(), removal_requests_.end());
       std::erase_if(kept, [&](std::uint32_t i) {
         return std::binary_search(removal_requests_.begin(), removal_requests_.end(),
@@ -892,7 +898,7 @@ public:
           permute_values(o, kept);
       groups_dirty_ = true;
     }
-    if (list_.rows() > 0 && (list_.rows() < particles_.size() || kept.size() < list_.rows())) {
+    if (list_.rows() > 0 && (list_.rows() < particles_.size() || renumbered)) {
       origin_.assign(particles_.size(), none);
       for (std::size_t i = 0; i < kept.size(); ++i)
         if (kept[i] < list_.rows()) origin_[i] = kept[i];
@@ -942,7 +948,12 @@ public:
       }
     }
     initialized_ = true;
-    call_stages<Hook::initialize>();
+    try {
+      call_stages<Hook::initialize>();
+    } catch (...) {
+      initialized_ = false; // a stage rejected the set-up: the next run checks again
+      throw;
+    }
   }
 
   /// Advances one time step.
@@ -1046,6 +1057,7 @@ public:
       wall_torque_sum_.clear();
       wall_contacts_.clear();
       origin_.clear();
+      removal_requests_.clear(); // the state read is complete
       groups_dirty_ = true;
       if (var_pairs_) refresh_pair_cache();
       initialized_ = true;
@@ -2596,6 +2608,7 @@ private:
   mutable detail::ConditionSet<D> cond_; ///< (its indices are refreshed lazily)
   mutable bool groups_dirty_ = true;
   std::optional<VectorTimeFunction<D>> gravity_fn_;
+  std::uint64_t gravity_revision_ = 0;
   V gravity_now_ = V::Zero();
   std::optional<std::pair<TimeFunction, TimeFunction>> damping_fn_;
   std::optional<std::pair<VectorTimeFunction<D>, AngularTimeFunction<D>>> mass_damping_;

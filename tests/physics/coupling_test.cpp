@@ -16,6 +16,7 @@
 //   it, and it falls freely under the system's gravity.
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include <array>
 #include <cmath>
 #include <doctest/doctest.h>
 #include <filesystem>
@@ -92,8 +93,6 @@ TEST_CASE("coupled bodies: a particle on a spring oscillates at sqrt(k/m) under 
                                                << ", t_min - T/2 = " << t_min - T / 2 << " s");
   CHECK(-z_min == approx(2 * m * g0 / k).epsilon(1e-5));
   CHECK(std::abs(t_min - T / 2) <= sim.time_step());
-  // the body and the particle move as one
-  CHECK((c.system().bodies().position[b] - sim.particles().position[0]).norm() == 0.0);
   CHECK(c.particle_of(b) == id);
 
   SUBCASE("with a damping ratio the peaks decay at xi") {
@@ -131,7 +130,6 @@ TEST_CASE("coupled bodies: a particle on a spring oscillates at sqrt(k/m) under 
 
 TEST_CASE("coupled bodies: Newton's cradle of two pendula on ball joints exchanges velocities") {
   const double r = 0.01, L = 0.2, theta0 = 0.3;
-  const double m = rubber.density * 4.0 / 3.0 * pi * r * r * r;
   Sim sim = make_sim(1e-5);
   // ball 2 hangs at rest at the origin, ball 1 is pulled back by theta0 on its circle
   const Vec3 pivot1(-2 * r, 0, L), pivot2(0, 0, L);
@@ -173,7 +171,7 @@ TEST_CASE("coupled bodies: Newton's cradle of two pendula on ball joints exchang
   CHECK(v_before == approx(v0).epsilon(1e-3));
   // the exchange: ball 1 stops, ball 2 takes its velocity (momentum m v to 1e-3)
   CHECK(v1_after.norm() / v_before < 2e-3);
-  CHECK(m * v2_after.x() == approx(m * v_before).epsilon(2e-3));
+  CHECK(v2_after.x() == approx(v_before).epsilon(2e-3)); // momentum m v passed on
   // ball 2 rises to ball 1's starting height, on its joint
   CHECK(z2_max == approx(h0).epsilon(2e-3));
   CHECK(c.system().joint_result(0).gap < 1e-10);
@@ -212,8 +210,8 @@ TEST_CASE("coupled bodies: a converted sphere leaves contact and falls freely") 
   const double r = 0.01;
   Sim sim = make_sim(1e-5);
   const auto a = add_sphere(sim, Vec3(0, 0, 0.1), r, Vec3(0.1, 0, 0));
-  const auto below =
-      add_sphere(sim, Vec3(0, 0, 0.08), r); // overlapping it: no contact once converted
+  // 5 mm into it: a contact would throw it away
+  const auto below = add_sphere(sim, Vec3(0, 0, 0.085), r);
   auto& c = sim.stage<gb::Coupling>();
   const auto b = c.convert(sim, a, {.mass = 0.5});
   CHECK(c.system().bodies().mass[b] == 0.5);
@@ -228,7 +226,7 @@ TEST_CASE("coupled bodies: a converted sphere leaves contact and falls freely") 
   CHECK((x - Vec3(0.1 * t, 0, 0.1 - g0 * t * t / 2)).norm() < 1e-12);
   // the other sphere fell freely too: nothing pushed it
   const Vec3 y = sim.particles().position[sim.index_of(below)];
-  CHECK((y - Vec3(0, 0, 0.08 - g0 * t * t / 2)).norm() < 1e-12);
+  CHECK((y - Vec3(0, 0, 0.085 - g0 * t * t / 2)).norm() < 1e-12);
 }
 
 TEST_CASE("coupled bodies: a step above the springs' critical step is rejected") {
@@ -242,6 +240,7 @@ TEST_CASE("coupled bodies: a step above the springs' critical step is rejected")
   const auto e = test::error_of([&] { sim.initialize(); });
   CHECK(test::has(e, "time_step = 5e-05"));
   CHECK(test::has(e, "critical step of the coupled body system"));
+  CHECK_THROWS_AS(sim.steps(1), InputError);      // not run after all
   CHECK_THROWS_AS(c.attach(sim, id), InputError); // already a body
 }
 
@@ -268,12 +267,15 @@ Sim cradle_with_spring() {
 
 TEST_CASE("coupled bodies: a checkpoint resumes bit for bit; another system is refused") {
   const auto path = std::filesystem::temp_directory_path() / "grain_coupling.ckpt";
-  Sim a = cradle_with_spring(), b = cradle_with_spring();
+  Sim a = cradle_with_spring(), b = cradle_with_spring(), never = cradle_with_spring();
   a.steps(23000); // through the collision of the pendula (at about 22400 steps)
   io::save_checkpoint(a, path.string());
   a.steps(6000); // ball 2 hits the free sphere
   io::load_checkpoint(b, path.string());
   b.steps(6000);
+  never.steps(29000); // saving changes nothing either
+  for (std::size_t i = 0; i < a.size(); ++i)
+    CHECK(a.particles().position[i] == never.particles().position[i]);
   const auto& ba = a.stage<gb::Coupling>().system();
   const auto& bb = b.stage<gb::Coupling>().system();
   for (std::size_t k = 0; k < ba.bodies().size(); ++k) {
@@ -293,4 +295,42 @@ TEST_CASE("coupled bodies: a checkpoint resumes bit for bit; another system is r
   CHECK(test::has(test::error_of([&] { io::load_checkpoint(other, path.string()); }),
                   "body system with 2 bodies"));
   std::filesystem::remove(path);
+}
+
+// An attached body without springs or joints moves exactly as the free particle it was: the
+// contact forces see the velocities velocity Verlet predicts (a dashpot contact with e = 0.5
+// on a floor), and a change of gravity between runs reaches both alike. The sums of the loads
+// differ in rounding (contact + weight is split and added again), hence 1e-12.
+TEST_CASE("coupled bodies: an attached body without springs moves as the free particle") {
+  const double r = 0.01;
+  auto drop = [&](bool attach) {
+    Sim::Params p;
+    p.time_step = 2e-6;
+    p.gravity = Vec3(0, 0, -g0);
+    Sim sim(p);
+    Material m = rubber;
+    m.restitution = 0.5;
+    m.friction = 0.3;
+    sim.add_material(m);
+    sim.add_wall(walls::Plane{Vec3(0, 0, 0), Vec3(0, 0, 1)});
+    ParticleSpec<3> s;
+    s.position = Vec3(0, 0, r + 1e-4);
+    s.radius = r;
+    s.velocity = Vec3(0.2, 0, -0.5);
+    s.omega = Vec3(0, 3, 0);
+    const auto id = sim.add_particle(s);
+    if (attach) sim.stage<gb::Coupling>().attach(sim, id);
+    sim.steps(3000); // through the impact
+    sim.set_gravity(Vec3(0, 0, -2 * g0));
+    sim.steps(1000);
+    const auto i = sim.index_of(id);
+    return std::array<Vec3, 3>{sim.particles().position[i], sim.particles().velocity[i],
+                               sim.particles().omega[i]};
+  };
+  const auto free = drop(false), body = drop(true);
+  REQUIRE(free[1].z() > 0.0); // rebounded
+  CHECK((body[0] - free[0]).norm() <= 1e-12 * free[0].norm());
+  CHECK((body[1] - free[1]).norm() <= 1e-12 * free[1].norm());
+  CHECK((body[2] - free[2]).norm() <= 1e-12 * free[2].norm());
+  MESSAGE("attached vs free: velocity difference " << (body[1] - free[1]).norm() << " m/s");
 }

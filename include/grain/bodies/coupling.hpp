@@ -33,9 +33,13 @@
 ///   kick, the joint impulses and the unspring rules (`BodySystem::finish_step`); the particle
 ///   takes the body's velocities.
 ///
-/// The system falls under the simulation's gravity (copied when the simulation initialises); its
-/// own global damping (`BodySystem::set_damping`) acts on all its bodies, the simulation's on
-/// the forces of attached particles. Contact laws see the particle's mass (the body's).
+/// The system falls under the simulation's gravity (taken again whenever `set_gravity` changes
+/// it); its own global damping (`BodySystem::set_damping`) acts on all its bodies, the
+/// simulation's on the forces of attached particles. Contact laws see the particle's mass (the
+/// body's). A stage that adds forces to attached particles in `after_forces` must come before
+/// `Coupling` in the stage list. Attaching or converting a particle between runs re-initialises
+/// the simulation; after adding springs or joints between runs, call `sim.initialize()` to have
+/// them checked before the next run.
 ///
 /// ## Converted particles
 /// `convert(sim, id, options)` turns a particle into an analytical body (Parmec's ANALYTICAL
@@ -111,6 +115,8 @@ public:
 private:
   template <class Sim>
   std::size_t attach_particle(Sim& sim, std::int64_t id) {
+    grain::detail::require(sim.is_active(id), "Coupling::attach", "particle id", id,
+                           "the id of an active particle of the simulation");
     const std::size_t i = sim.index_of(id);
     auto& link = sim.template field<BodyLink>();
     grain::detail::require(link[i].body < 0, "Coupling::attach", "particle id", id,
@@ -127,11 +133,14 @@ private:
     particle_.resize(system_.bodies().size(), -1);
     particle_[k] = id;
     attached_.push_back(k);
+    if (sim.initialized()) sim.initialize(); // between runs: loads and checks now
     return k;
   }
 
   template <class Sim>
   std::size_t convert_particle(Sim& sim, std::int64_t id, const AnalyticalOptions& o) {
+    grain::detail::require(sim.is_active(id), "Coupling::convert", "particle id", id,
+                           "the id of an active particle of the simulation");
     const std::size_t i = sim.index_of(id);
     grain::detail::require(sim.template field<BodyLink>()[i].body < 0, "Coupling::convert",
                            "particle id", id, "a particle that is not an attached body");
@@ -144,6 +153,7 @@ private:
     const std::size_t k = system_.add_body(b); // validates before the particle goes
     sim.remove_particle(id);
     particle_.resize(system_.bodies().size(), -1);
+    if (sim.initialized()) sim.initialize(); // between runs: loads and checks now
     return k;
   }
 
@@ -158,7 +168,8 @@ public:
   template <class Sim>
   void initialize(Sim& sim) {
     require_simulation<Sim>();
-    if constexpr (fits<Sim>) check_step(sim);
+    if constexpr (fits<Sim>)
+      if (sim.moves()) check_step(sim);
   }
 
   /// The system's first kick, joint impulses and drift; attached particles placed.
@@ -176,11 +187,6 @@ public:
     if constexpr (fits<Sim>) finish(sim);
   }
 
-  template <class Sim>
-  void end_of_step(Sim&) {
-    in_step_ = false;
-  }
-
   /// The coupling and its body system in a checkpoint (the program makes the same system and
   /// attaches and converts the same particles before loading).
   template <class Archive>
@@ -193,8 +199,7 @@ public:
                        " (the particles this program attaches, in the same order)");
     ar(particle_, attached_);
     system_.serialize(ar);
-    in_step_ = false;
-    system_initialized_ = false; // gravity and clock are taken again from the simulation
+    if constexpr (Archive::reading) gravity_set_ = false; // taken again from the simulation
   }
 
 private:
@@ -203,7 +208,6 @@ private:
 
   template <class Sim>
   void check_step(Sim& sim) {
-    if (!system_initialized_) start(sim);
     const double hc = system_.critical();
     if (sim.time_step() > hc)
       throw InputError("Simulation: time_step = " + grain::detail::to_text(sim.time_step()) +
@@ -215,12 +219,18 @@ private:
 
   template <class Sim>
   void begin(Sim& sim) {
-    if (!system_initialized_) start(sim);
-    in_step_ = true;
+    if (!gravity_set_ || gravity_seen_ != sim.gravity_revision()) take_gravity(sim);
     const double h = sim.time_step();
+    // half a kick with the loads of the last evaluation (begin_step clears them)
+    const RigidBodies& b = system_.bodies();
+    kick_v_.resize(b.size());
+    kick_w_.resize(b.size());
+    for (std::size_t k : attached_) {
+      kick_v_[k] = (0.5 * h * b.inv_mass[k]) * b.force[k];
+      kick_w_[k] = 0.5 * h * (inverse_world_inertia(b, k) * b.torque[k]);
+    }
     system_.set_time(sim.time());
     system_.begin_step(h);
-    const RigidBodies& b = system_.bodies();
     auto& p = sim.particles();
     const auto& link = sim.template field<BodyLink>();
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -229,13 +239,14 @@ private:
       p.position[i] = b.position[k];
       p.orientation[i] = b.orientation[k] * b.axes[k].conjugate();
       // velocities the forces will see: half-step velocities plus half a kick
-      p.velocity[i] = b.velocity[k] + (0.5 * h * b.inv_mass[k]) * b.force[k];
-      p.omega[i] = b.omega[k] + 0.5 * h * (inverse_world_inertia(b, k) * b.torque[k]);
+      p.velocity[i] = b.velocity[k] + kick_v_[k];
+      p.omega[i] = b.omega[k] + kick_w_[k];
     }
   }
 
   template <class Sim>
   void finish(Sim& sim) {
+    if (!sim.moves()) return; // a thermal analysis: nothing moves
     auto& p = sim.particles();
     const auto& link = sim.template field<BodyLink>();
     // a particle removed by the simulation (sink, bounding box) leaves its body without load
@@ -247,11 +258,12 @@ private:
       const auto k = static_cast<std::size_t>(link[i].body);
       system_.set_external_load(k, p.force[i] - p.mass[i] * g, p.torque[i]);
     }
-    if (in_step_) {
+    if (sim.initialized()) {
       system_.finish_step(sim.time_step());
-    } else {
-      start(sim);
-      system_.initialize(); // the initial evaluation (or a thermal analysis: no motion)
+    } else { // the initial evaluation of Simulation::initialize
+      take_gravity(sim);
+      system_.set_time(sim.time());
+      system_.initialize();
     }
     const RigidBodies& b = system_.bodies();
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -270,20 +282,21 @@ private:
                   "grain::bodies::Coupling: the body system is integrated with velocity Verlet; "
                   "use integrate::VelocityVerlet (the default) as the simulation's integrator");
   }
-  /// The system takes the simulation's gravity and clock.
+  /// The system takes the simulation's gravity (a change between runs acts from the next force
+  /// evaluation on, as for the particles).
   template <class Sim>
-  void start(Sim& sim) {
-    require_simulation<Sim>();
-    system_.set_gravity(sim.gravity_function());
-    system_.set_time(sim.time());
-    system_initialized_ = true;
+  void take_gravity(Sim& sim) {
+    system_.replace_gravity(sim.gravity_function());
+    gravity_seen_ = sim.gravity_revision();
+    gravity_set_ = true;
   }
 
   BodySystem system_{};
   std::vector<std::int64_t> particle_{}; ///< per body: the attached particle's id, or -1
   std::vector<std::size_t> attached_{};
-  bool in_step_ = false;
-  bool system_initialized_ = false;
+  std::vector<Vec3> kick_v_{}, kick_w_{}; ///< half kicks of the attached bodies [m/s], [rad/s]
+  std::uint64_t gravity_seen_ = 0;
+  bool gravity_set_ = false;
 };
 
 } // namespace grain::bodies

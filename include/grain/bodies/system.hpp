@@ -380,6 +380,10 @@ public:
     gravity_ = std::move(g);
     initialized_ = false;
   }
+  /// Replaces g(t) without re-evaluating the loads of the current configuration: the next
+  /// first kick uses the loads of the last evaluation, the next evaluation the new gravity (what a
+  /// simulation does when its gravity changes between runs; coupling.hpp).
+  void replace_gravity(VectorTimeFunction<3> g) { gravity_ = std::move(g); }
 
   /// Global damping as Parmec's DAMPING command, with coefficients d_v(t), d_w(t) [1/s] >= 0 per
   /// world axis: F -= m (d_v . v) and T -= J_world (d_w . omega) (component-wise products),
