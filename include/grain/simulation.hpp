@@ -1713,9 +1713,7 @@ private:
 
   template <class T>
   static void permute_values(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
-    std::vector<T> out(perm.size());
-    for (std::size_t k = 0; k < perm.size(); ++k) out[k] = v[perm[k]];
-    v.swap(out);
+    detail::permute_in_place(v, perm);
   }
 
   /// Contact constants of every list entry from the particles' current properties.

@@ -12,6 +12,51 @@
 
 namespace grain {
 
+namespace detail {
+
+/// Reorders v so that new index k holds old index perm[k], in place (no second array: a
+/// re-sort of a million particles would otherwise allocate and free one copy per field).
+/// `perm` is a permutation of 0 .. v.size() - 1, or an ascending selection (a removal: the
+/// particles it does not name go).
+template <class T>
+void permute_in_place(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
+  if (perm.size() < v.size()) {
+    bool ascending = true;
+    for (std::size_t k = 1; k < perm.size() && ascending; ++k)
+      ascending = perm[k - 1] < perm[k];
+    if (ascending) { // perm[k] >= k: a forward copy never overwrites what it still reads
+      for (std::size_t k = 0; k < perm.size(); ++k)
+        v[k] = v[perm[k]];
+      v.resize(perm.size());
+      return;
+    }
+    std::vector<T> out(perm.size());
+    for (std::size_t k = 0; k < perm.size(); ++k)
+      out[k] = v[perm[k]];
+    v.swap(out);
+    return;
+  }
+  // follow each cycle of the permutation once, holding one element aside
+  std::vector<bool> done(v.size(), false);
+  for (std::size_t s = 0; s < v.size(); ++s) {
+    if (done[s]) continue;
+    T first = v[s];
+    std::size_t k = s;
+    for (;;) {
+      done[k] = true;
+      const std::size_t from = perm[k];
+      if (from == s) {
+        v[k] = first;
+        break;
+      }
+      v[k] = v[from];
+      k = from;
+    }
+  }
+}
+
+} // namespace detail
+
 /// Per-particle fields of a D-dimensional simulation (SI units).
 template <int D>
 struct ParticleArrays {
@@ -54,9 +99,7 @@ struct ParticleArrays {
 protected:
   template <class T>
   static void apply(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
-    std::vector<T> out(perm.size());
-    for (std::size_t k = 0; k < perm.size(); ++k) out[k] = v[perm[k]];
-    v.swap(out);
+    detail::permute_in_place(v, perm);
   }
 };
 
