@@ -412,12 +412,7 @@ public:
       std::vector<std::uint32_t> kept;
       for (std::size_t i = 0; i < particles_.size(); ++i)
         if (particles_.id[i] != id) kept.push_back(static_cast<std::uint32_t>(i));
-      particles_.permute(kept);
-      permute_fields(kept);
-      if (var_pairs_)
-        for (auto& o : over_)
-          permute_values(o, kept);
-      groups_dirty_ = true;
+      keep_particles(kept);
       return;
     }
     removal_requests_.push_back(id); // carried out by initialize, which maps the old list
@@ -891,12 +886,7 @@ public:
                                   particles_.id[i]);
       });
       removal_requests_.clear();
-      particles_.permute(kept);
-      permute_fields(kept);
-      if (var_pairs_)
-        for (auto& o : over_)
-          permute_values(o, kept);
-      groups_dirty_ = true;
+      keep_particles(kept);
     }
     if (list_.rows() > 0 && (list_.rows() < particles_.size() || renumbered)) {
       origin_.assign(particles_.size(), none);
@@ -1711,6 +1701,17 @@ private:
     if (heat_on_) update_cells();
   }
 
+  /// Keeps the particles `kept` names (ascending old indices), with their fields and pair
+  /// overrides, renumbered 0 .. kept.size() - 1.
+  void keep_particles(const std::vector<std::uint32_t>& kept) {
+    particles_.permute(kept);
+    permute_fields(kept);
+    if (var_pairs_)
+      for (auto& o : over_)
+        permute_values(o, kept);
+    groups_dirty_ = true;
+  }
+
   template <class T>
   static void permute_values(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
     detail::permute_in_place(v, perm);
@@ -2395,10 +2396,7 @@ private:
       std::erase_if(doomed_, [&](const std::pair<double, std::int64_t>& d) {
         return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
       });
-      p.permute(kept);
-      permute_fields(kept);
-      if (var_pairs_)
-        for (auto& o : over_) permute_values(o, kept);
+      keep_particles(kept);
     }
     bool born = false;
     if (!pending_.empty()) {
