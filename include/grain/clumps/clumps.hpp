@@ -285,8 +285,10 @@ public:
       }
     }
     // velocities the forces will see: half-step velocities plus half a kick
-    std::vector<V> v(size());
-    std::vector<A> w(size());
+    auto& v = predicted_v_;
+    auto& w = predicted_w_;
+    v.resize(size());
+    w.resize(size());
     for (std::size_t c = 0; c < size(); ++c) {
       v[c] = velocity(c) + (0.5 * h / mass(c)) * force(c);
       if constexpr (D == 3)
@@ -395,6 +397,8 @@ private:
   std::vector<ClumpShape<D>> shapes_;
   std::vector<std::string> names_;
   std::vector<std::vector<std::int64_t>> ids_;
+  std::vector<V> predicted_v_; ///< clump velocities the forces of the step see (work space)
+  std::vector<A> predicted_w_;
   bool in_step_ = false;
 };
 

@@ -155,6 +155,23 @@ void check_members(const std::string& object, const std::vector<V>& centres,
   }
 }
 
+/// The x-range of the members' union and the cuts at each member's ends.
+struct XExtent {
+  double x0 = 1e300, x1 = -1e300;
+  std::vector<double> cuts;
+};
+template <class V>
+XExtent x_extent(const std::vector<V>& centres, const std::vector<double>& radii) {
+  XExtent e;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    e.x0 = std::min(e.x0, centres[i].x() - radii[i]);
+    e.x1 = std::max(e.x1, centres[i].x() + radii[i]);
+    e.cuts.push_back(centres[i].x() - radii[i]);
+    e.cuts.push_back(centres[i].x() + radii[i]);
+  }
+  return e;
+}
+
 } // namespace detail
 
 /// Volume, centroid and inertia per unit density of the union of spheres (centres c_k, radii
@@ -165,13 +182,8 @@ inline UnionMoments<3> union_moments(const std::vector<Vec3>& centres,
   detail::check_members(object, centres, radii);
   const std::size_t n = centres.size();
   // x pieces: sphere ends, x-extents of pairwise intersection circles, triple points
-  double x0 = 1e300, x1 = -1e300;
-  std::vector<double> cuts;
+  auto [x0, x1, cuts] = detail::x_extent(centres, radii);
   for (std::size_t i = 0; i < n; ++i) {
-    x0 = std::min(x0, centres[i].x() - radii[i]);
-    x1 = std::max(x1, centres[i].x() + radii[i]);
-    cuts.push_back(centres[i].x() - radii[i]);
-    cuts.push_back(centres[i].x() + radii[i]);
     for (std::size_t j = i + 1; j < n; ++j) {
       const Vec3 d = centres[j] - centres[i];
       const double L = d.norm();
@@ -276,13 +288,8 @@ inline UnionMoments<2> union_moments(const std::vector<Vec2>& centres,
                                      const std::string& object = "clump") {
   detail::check_members(object, centres, radii);
   const std::size_t n = centres.size();
-  double x0 = 1e300, x1 = -1e300;
-  std::vector<double> cuts;
+  auto [x0, x1, cuts] = detail::x_extent(centres, radii);
   for (std::size_t i = 0; i < n; ++i) {
-    x0 = std::min(x0, centres[i].x() - radii[i]);
-    x1 = std::max(x1, centres[i].x() + radii[i]);
-    cuts.push_back(centres[i].x() - radii[i]);
-    cuts.push_back(centres[i].x() + radii[i]);
     for (std::size_t j = 0; j < i; ++j)
       detail::circle_intersections_y(centres[i], radii[i], centres[j], radii[j], cuts, 0);
   }

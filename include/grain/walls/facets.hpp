@@ -125,7 +125,8 @@ public:
       }
     }
     // velocities at the end of the step as the forces see them
-    std::vector<V> v(nodes_.size());
+    auto& v = predicted_;
+    v.resize(nodes_.size());
     for (std::size_t n = 0; n < nodes_.size(); ++n)
       v[n] = nodes_[n].mass > 0.0 ? V(nodes_[n].velocity + (0.5 * h / nodes_[n].mass) * force_[n])
                                   : nodes_[n].velocity;
@@ -228,6 +229,7 @@ private:
   std::vector<V> force_; ///< total force on each free node at the last evaluation [N]
   std::vector<V> extra_; ///< forces added by other stages for the current evaluation [N]
   std::vector<V> load_;  ///< contact loads of the last evaluation [N]
+  std::vector<V> predicted_; ///< node velocities the forces of the step see (work space) [m/s]
   std::vector<Facet> facets_;
   std::vector<std::size_t> facet_of_;
   bool in_step_ = false;
