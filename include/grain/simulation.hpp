@@ -840,6 +840,7 @@ public:
   /// Validates the set-up, fixes the time step, builds the neighbour list and computes the
   /// initial forces. Called by run() and step() when needed; raises InputError on bad input.
   void initialize() {
+    settle_kick();
     // a re-initialisation (after adding particles, walls or materials) continues the time
     time_offset_ = time_;
     step0_ = step_;
@@ -947,7 +948,12 @@ public:
   }
 
   /// Advances one time step.
-  void step() {
+  void step() { advance(false); }
+
+private:
+  /// One step; `defer_kick`: the caller steps again before anyone looks at the state, so the
+  /// last half kick may be left to the next step's fused pass (see fuse_kick).
+  void advance(bool defer_kick) {
     if (!initialized_) initialize();
     const auto t0 = std::chrono::steady_clock::now();
     const double dt = dt_;
@@ -969,7 +975,10 @@ public:
       if (heat_on_) maybe_update_cells();
       compute_forces(IntegratorT::drift_before_forces ? time_ + dt : time_, true);
       call_stages<Hook::after_forces>();
-      integrate_after(dt);
+      if (defer_kick && fuse_kick())
+        kick_pending_ = true;
+      else
+        integrate_after(dt);
       if constexpr (!IntegratorT::drift_before_forces) move_walls(dt);
     } else {
       if constexpr (thermal) static_heat_rates();
@@ -994,13 +1003,25 @@ public:
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 
+public:
   /// Runs n steps, calling each observer after every step (see io::every).
   template <class... Observers>
   void steps(long n, Observers&&... obs) {
     if (!initialized_) initialize();
     (detail::start_observer(obs, *this), ...);
     for (long k = 0; k < n; ++k) {
-      step();
+      if constexpr (sizeof...(Observers) == 0) {
+        // nobody looks at the state between these steps: the last half kick of a step may join
+        // the next step's first one (the same arithmetic, one pass over the particles less)
+        try {
+          advance(k + 1 < n);
+        } catch (...) {
+          settle_kick();
+          throw;
+        }
+      } else {
+        step();
+      }
       (obs(*this), ...);
     }
     (detail::finish_observer(obs, *this), ...);
@@ -1522,14 +1543,19 @@ private:
   GRAIN_INLINE bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g,
                                   const std::vector<V>& v, const std::vector<A>& w) const {
     const auto& p = particles_;
-    const V d = p.position[j] - p.position[i];
-    const double d2 = d.squaredNorm();
     const double rs = p.radius[i] + p.radius[j];
-    if (d2 >= rs * rs) return false;
-    const double dist = std::sqrt(d2);
-    pair_geometry<D>(g, p.position[i], V(d / dist), dist, p.radius[i], p.radius[j],
-                     p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
+    if ((p.position[j] - p.position[i]).squaredNorm() >= rs * rs) return false;
+    pair_geometry_of(i, j, g, v, w);
     return true;
+  }
+  /// Geometry of pair (i, j), which touches, with the velocities `v`, `w`.
+  GRAIN_INLINE void pair_geometry_of(std::size_t i, std::size_t j, ContactGeometry<D>& g,
+                                     const std::vector<V>& v, const std::vector<A>& w) const {
+    const auto& p = particles_;
+    const V d = p.position[j] - p.position[i];
+    const double dist = std::sqrt(d.squaredNorm());
+    pair_geometry<D>(g, p.position[i], V(d / dist), dist, p.radius[i], p.radius[j], p.mass[i],
+                     p.mass[j], v[i], v[j], w[i], w[j]);
   }
   GRAIN_INLINE bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g,
                                   const std::vector<V>& v, const std::vector<A>& w) const {
@@ -1839,7 +1865,8 @@ private:
   /// computed; forces use the prediction v(n+1/2) + a(n) dt/2, so that velocity-dependent forces
   /// (dashpots, global damping) are second-order accurate, and tangential springs still
   /// integrate the half-step velocity that moved the particles (ContactGeometry::slip_velocity).
-  static constexpr bool predicts_velocity = IntegratorT::drift_before_forces;
+  /// With integrate::VelocityVerletHalfStep every force sees v(n+1/2).
+  static constexpr bool predicts_velocity = integrate::predicts_velocity_v<IntegratorT>;
 
   /// Forces, torques (and heat rates) at time t; `in_step` = called by step() (prescribed motion
   /// of the step is known).
@@ -1975,20 +2002,9 @@ private:
     [[maybe_unused]] const bool heat = heat_on_;
     const bool track = tracking_;
     double work = 0.0; // power the contacts of row i deliver to the bodies [W]
-    for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
-      const auto j = list_.partners[e];
-      if (!touching_pair(i, j, g, vf, wf)) {
-        if constexpr (!Contact::template stateless<D>) history_[e] = History{};
-        if constexpr (Contact::indirect) {
-          if (heat) {
-            const double H = gap_pair_conductance(i, j, e, g);
-            const double q = H * (p.temperature[j] - p.temperature[i]);
-            p.heat_rate[i] += q;
-            p.heat_rate[j] -= q;
-          }
-        }
-        continue;
-      }
+    // a touching pair: geometry, contact law, loads (and heat)
+    auto touching = [&](std::uint32_t e, std::uint32_t j) GRAIN_INLINE_LAMBDA {
+      pair_geometry_of(i, j, g, vf, wf);
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
       const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
@@ -2015,6 +2031,49 @@ private:
           p.heat_rate[i] += q + w;
           p.heat_rate[j] += w - q;
         }
+      }
+    };
+    const auto row_begin = list_.offsets[i], row_end = list_.offsets[i + 1];
+    if constexpr (Contact::indirect) {
+      for (auto e = row_begin; e < row_end; ++e) {
+        const auto j = list_.partners[e];
+        if (touching_pair(i, j, g, vf, wf)) {
+          touching(e, j);
+          continue;
+        }
+        if constexpr (!Contact::template stateless<D>) history_[e] = History{};
+        if (heat) {
+          const double H = gap_pair_conductance(i, j, e, g);
+          const double q = H * (p.temperature[j] - p.temperature[i]);
+          p.heat_rate[i] += q;
+          p.heat_rate[j] -= q;
+        }
+      }
+    } else {
+      // first a branch-free distance test over a block of the row, then the contact law only for
+      // the pairs that touch; the history of a pair that no longer touches is cleared (written
+      // only if it is not blank already)
+      const V xi = p.position[i];
+      const double ri = p.radius[i];
+      constexpr std::uint32_t block = 32;
+      std::uint32_t hit[block];
+      for (auto b = row_begin; b < row_end; b += block) {
+        const auto b_end = std::min(row_end, b + block);
+        std::uint32_t nhit = 0;
+        for (auto e = b; e < b_end; ++e) {
+          const auto j = list_.partners[e];
+          const double rs = ri + p.radius[j];
+          const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
+          hit[nhit] = e;
+          nhit += t;
+          if constexpr (!Contact::template stateless<D>)
+            if (!t && std::memcmp(static_cast<const void*>(&history_[e]),
+                                  static_cast<const void*>(&blank_history_), sizeof(History)))
+                [[unlikely]]
+              history_[e] = blank_history_;
+        }
+        for (std::uint32_t k = 0; k < nhit; ++k)
+          touching(hit[k], list_.partners[hit[k]]);
       }
     }
     for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
@@ -2235,12 +2294,13 @@ private:
     auto& p = particles_;
     const long n = static_cast<long>(p.size());
     const bool control = cond_.any_control();
-    if constexpr (predicts_velocity) {
+    if constexpr (IntegratorT::drift_before_forces) {
       if (!control && !mass_damping_ && !stages_move) {
         fused_before(dt);
         return;
       }
     }
+    settle_kick();
     if (control) cond_.save(p, time_, dt);
     const bool spins = spins_();
     const bool orient = params_.track_orientation;
@@ -2278,8 +2338,38 @@ private:
         cond_.drift(p, time_, dt, false, rotator());
     }
   }
+  /// The second half kick of velocity Verlet for particle i (what integrate_after does for it
+  /// when no particle is controlled).
+  GRAIN_INLINE void after_one(std::size_t i, double dt, bool spins) {
+    auto& p = particles_;
+    const V a = p.force[i] * p.inv_mass[i];
+    IntegratorT::after(p.velocity[i], a, dt, [](const V&, double) {});
+    if (Contact::has_torque || spins) {
+      const A al = p.torque[i] * p.inv_inertia[i];
+      IntegratorT::after(p.omega[i], al, dt, [](const A&, double) {});
+    }
+  }
+  /// True if the second half kick of this step may be left to the next step's fused pass: the
+  /// fused pass runs (velocity Verlet, no controlled particle, no mass damping), and nothing
+  /// between the two reads or changes velocities or forces (no stage, no variable property, no
+  /// particle created or removed).
+  bool fuse_kick() const {
+    if constexpr (IntegratorT::drift_before_forces && no_stages)
+      return !cond_.any_control() && !mass_damping_ && vprops_.empty() && !lifecycle_due();
+    else
+      return false;
+  }
+  /// Applies a half kick left pending (a run interrupted by an exception).
+  void settle_kick() {
+    if (!kick_pending_) return;
+    kick_pending_ = false;
+    const bool spins = spins_();
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      after_one(i, dt_, spins);
+  }
   /// Velocity Verlet without controlled particles or mass damping: one pass over the particles
-  /// ends step n and starts step n+1. Per particle: the half kick and the drift, the displacement
+  /// ends step n (when its second half kick was left pending) and starts step n+1. Per particle:
+  /// the half kick and the drift, the displacement
   /// since the last neighbour-list build, the velocities the forces will see (v(n+1/2) +
   /// a(n) dt/2), and the force arrays started with gravity and global damping (heat rates with
   /// zero). `compute_forces` and `update_neighbors` then skip their own passes over the particles.
@@ -2288,34 +2378,63 @@ private:
     const long n = static_cast<long>(p.size());
     const bool spins = spins_();
     const bool orient = params_.track_orientation;
-    const double half_dt = 0.5 * dt;
-    vf_.resize(p.size());
-    if constexpr (Contact::has_torque) wf_.resize(p.size());
+    if constexpr (predicts_velocity) {
+      vf_.resize(p.size());
+      if constexpr (Contact::has_torque) wf_.resize(p.size());
+    }
     const auto loads = global_loads(time_ + dt);
     const V g = std::get<0>(loads);
     const double ct = std::get<1>(loads), cr = std::get<2>(loads);
     const bool check = skin_ > 0.0 && snapshot_.size() == p.size();
+    const bool kick = kick_pending_;
+    kick_pending_ = false;
+    const Fused f{dt, g, ct, cr, spins, orient, kick};
     double d2 = 0.0;
 #pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
-      before_one(static_cast<std::size_t>(i), dt, spins, orient);
-      if (check) d2 = std::max(d2, (p.position[i] - snapshot_[i]).squaredNorm());
-      const V v = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
-      vf_[i] = v;
-      p.force[i] = p.mass[i] * g - ct * v;
-      if constexpr (Contact::has_torque) {
-        const A w = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
-        wf_[i] = w;
-        p.torque[i] = -cr * w;
-      } else {
-        p.torque[i] = zero<A>();
-      }
-      if constexpr (thermal) p.heat_rate[i] = 0.0;
+      const double d = fused_one(static_cast<std::size_t>(i), f);
+      if (check) d2 = std::max(d2, d);
     }
     fused_d2_ = check ? d2 : -1.0;
     prefilled_ = true;
   }
 
+  /// What the fused pass needs per step.
+  struct Fused {
+    double dt;
+    V g;           ///< gravity at the end of the step [m/s^2]
+    double ct, cr; ///< global damping [N s/m], [N m s]
+    bool spins, orient;
+    bool kick; ///< the last step's second half kick is pending
+  };
+  /// The fused pass for particle i (see fused_before); returns its squared displacement since the
+  /// last neighbour-list build.
+  GRAIN_INLINE double fused_one(std::size_t i, const Fused& f) {
+    auto& p = particles_;
+    const double half_dt = 0.5 * f.dt;
+    if (f.kick) after_one(i, f.dt, f.spins); // the last step's second half kick
+    before_one(i, f.dt, f.spins, f.orient);
+    if constexpr (predicts_velocity) {
+      const V v = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
+      vf_[i] = v;
+      p.force[i] = p.mass[i] * f.g - f.ct * v;
+    } else {
+      p.force[i] = p.mass[i] * f.g - f.ct * p.velocity[i];
+    }
+    if constexpr (Contact::has_torque) {
+      if constexpr (predicts_velocity) {
+        const A w = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
+        wf_[i] = w;
+        p.torque[i] = -f.cr * w;
+      } else {
+        p.torque[i] = -f.cr * p.omega[i];
+      }
+    } else {
+      p.torque[i] = zero<A>();
+    }
+    if constexpr (thermal) p.heat_rate[i] = 0.0;
+    return i < snapshot_.size() ? (p.position[i] - snapshot_[i]).squaredNorm() : 0.0;
+  }
   /// True if angular velocities are integrated from torques: a contact model makes torques, or
   /// a prescribed torque acts.
   bool spins_() const { return Contact::has_torque || !cond_.torques.empty(); }
@@ -2444,6 +2563,9 @@ private:
   /// True if a stage moves particles or walls between the drift and the search: the fused
   /// velocity-Verlet pass (which measures displacements and predicts velocities before it) is
   /// then not used.
+  static constexpr bool no_stages = []<class... Ss>(stages<Ss...>) {
+    return sizeof...(Ss) == 0;
+  }(StageList{});
   static constexpr bool stages_move = []<class... Ss>(stages<Ss...>) {
     return (detail::moves_in_stage<Ss, Simulation> || ...);
   }(StageList{});
@@ -2560,6 +2682,8 @@ private:
   std::vector<Wall<D>> walls_;
   NeighborList list_;
   std::vector<History> history_, wall_history_;
+  bool kick_pending_ = false; ///< the last step's second half kick is left to the next step
+  History blank_history_{};   ///< a value-initialised history (what a pair without contact has)
   std::vector<V> snapshot_;
   std::vector<V> vf_; ///< velocities seen by the forces (velocity Verlet)
   std::vector<A> wf_; ///< angular velocities seen by the forces (velocity Verlet)

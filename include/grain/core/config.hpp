@@ -6,10 +6,13 @@
 /// `Interaction::evaluate` and the model functions it calls) that must be inlined into the force
 /// loop: the compiler's own heuristics stop inlining a deep template chain early, and a call per
 /// contact then costs a third of the contact law. Expands to `[[gnu::always_inline]] inline` on
-/// GCC and Clang, to `inline` elsewhere.
+/// GCC and Clang, to `inline` elsewhere. `GRAIN_INLINE_LAMBDA` does the same for a lambda (placed
+/// after its parameter list).
 
 #if defined(__GNUC__) || defined(__clang__)
 #define GRAIN_INLINE [[gnu::always_inline]] inline
+#define GRAIN_INLINE_LAMBDA __attribute__((always_inline))
 #else
 #define GRAIN_INLINE inline
+#define GRAIN_INLINE_LAMBDA
 #endif
