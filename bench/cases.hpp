@@ -35,8 +35,10 @@ inline constexpr double case_v0 = 0.1;          ///< amplitude of the initial ve
 /// LIGGGHTS' gamma_n), tangential stiffness at the Mindlin ratio (k_t = 8 G* a) and damping at
 /// the normal damping ratio (eta_t equals LIGGGHTS' gamma_t).
 using Settle3dContact = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider>;
+/// The cases' integrator is the peers' `fix nve/sphere`: velocity Verlet whose forces see the
+/// half-step velocities (integrate::VelocityVerletHalfStep).
 template <class Search = search::CellList>
-using Settle3d = Simulation<Sphere, Search, Settle3dContact, integrate::VelocityVerlet>;
+using Settle3d = Simulation<Sphere, Search, Settle3dContact, integrate::VelocityVerletHalfStep>;
 
 namespace detail {
 /// The particles and walls of settle3d in `sim` (material m): spheres on the lattice with the
@@ -106,7 +108,7 @@ struct OverlapAreaConduction {
 using Thermal3dContact = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider, rolling::None,
                                      OverlapAreaConduction, area::Geometric>;
 template <class Search = search::CellList>
-using Thermal3d = Simulation<Sphere, Search, Thermal3dContact, integrate::VelocityVerlet>;
+using Thermal3d = Simulation<Sphere, Search, Thermal3dContact, integrate::VelocityVerletHalfStep>;
 
 /// thermal3d: settle3d plus conduction (k = 1 W/(m K), c = 840 J/(kg K)); particles of lattice
 /// columns i < floor(NX/2) start at 400 K (group "hot"), the others at 300 K; ids are the
@@ -133,9 +135,9 @@ Thermal3d<Search> make_thermal3d(int nx, int ny, int nz) {
 /// eta_n (LIGGGHTS' kt = kn, gamma_t = gamma_n).
 using Pack2dContact = Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider>;
 template <class Search = search::CellList>
-using Pack2d = Simulation<Disk, Search, Pack2dContact, integrate::VelocityVerlet>;
+using Pack2d = Simulation<Disk, Search, Pack2dContact, integrate::VelocityVerletHalfStep>;
 
-/// Contact coefficients of pack2d (see Pack2dContact).
+/// Contact coefficients of pack2d (see Pack2dContact), computed per contact from the pair.
 inline Pack2dContact::Params pack2d_contact() {
   Pack2dContact::Params c;
   c.normal.reference_velocity = 1.0;
@@ -144,19 +146,40 @@ inline Pack2dContact::Params pack2d_contact() {
   return c;
 }
 
+/// The same law with its coefficients fixed for contacts of effective radius r_eff and mass
+/// m_eff of the pair `pair`: K and eta_n = eta_t from pack2d_contact()'s formulas, evaluated once.
+/// For one size of disk these are the constants of a pair type, as LAMMPS' input gives them.
+inline Pack2dContact::Params pack2d_constants(const PairProperties& pair, double r_eff,
+                                              double m_eff) {
+  using Normal = normal::LinearSpringDashpot;
+  auto c = pack2d_contact();
+  c.normal.stiffness = Normal::stiffness(pair, c.normal, r_eff, m_eff);
+  c.normal.damping = Normal::damping(pair, c.normal, c.normal.stiffness, m_eff);
+  c.tangent.damping = c.normal.damping; // eta_t = eta_n sqrt(k_t/k_n), k_t = k_n
+  return c;
+}
+
 /// pack2d: disks d = 1 mm, 1 mm thick (m = pi r^2 x 2.5 kg/m^2, I = 1/2 m r^2), on a square
 /// lattice (spacing 1.001 d) in a box of 4 walls, linear spring-dashpot with e = 0.5, mu = 0.5,
 /// dt = 2.5e-6 s, gravity -y. The walls are segments that reach one diameter beyond the box, so
-/// that every disk inside meets them as the infinite planes of the peer inputs.
+/// that every disk inside meets them as the infinite planes of the peer inputs. They have a
+/// material of their own with the disks' properties, so that disk-disk contacts (R* = r/2, m* =
+/// m/2) and disk-wall contacts (R* = r, m* = m) each get their constant coefficients
+/// (pack2d_constants; `per_contact` = true computes them in every contact instead, as LIGGGHTS
+/// does: the same values).
 template <class Search = search::CellList>
-Pack2d<Search> make_pack2d(int nx, int ny) {
+Pack2d<Search> make_pack2d(int nx, int ny, bool per_contact = false) {
   const double d = case_diameter, r = 0.5 * d, a = 1.001 * d, v0 = case_v0;
   Pack2d<Search> sim({.time_step = case_time_step,
                       .gravity = Vec2(0, -9.81),
                       .contact = pack2d_contact(),
-                      .search = {.skin = 0.1 * d}},
+                      .search = {.skin = 0.1 * d},
+                      .track_orientation = false},
                      Disk{.thickness = 1e-3});
   const auto m = sim.add_material(case_material());
+  auto wall_material = case_material();
+  wall_material.name = "wall";
+  const auto mw = sim.add_material(wall_material);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const long n = i + static_cast<long>(nx) * j;
@@ -164,11 +187,16 @@ Pack2d<Search> make_pack2d(int nx, int ny) {
       sim.add_particle({.position = Vec2((i + 0.5) * a, (j + 0.5) * a), .radius = r, .material = m,
                         .velocity = v});
     }
+  if (!per_contact) {
+    const double mass = sim.particles().mass[0];
+    sim.set_pair_parameters(m, m, pack2d_constants(sim.pair_properties(m, m), 0.5 * r, 0.5 * mass));
+    sim.set_pair_parameters(m, mw, pack2d_constants(sim.pair_properties(m, mw), r, mass));
+  }
   const double lx = nx * a, ly = ny * a, e = d;
-  sim.add_wall(walls::Segment{Vec2(-e, 0), Vec2(lx + e, 0)}, {.name = "bottom", .material = m});
-  sim.add_wall(walls::Segment{Vec2(-e, ly), Vec2(lx + e, ly)}, {.name = "top", .material = m});
-  sim.add_wall(walls::Segment{Vec2(0, -e), Vec2(0, ly + e)}, {.name = "left", .material = m});
-  sim.add_wall(walls::Segment{Vec2(lx, -e), Vec2(lx, ly + e)}, {.name = "right", .material = m});
+  sim.add_wall(walls::Segment{Vec2(-e, 0), Vec2(lx + e, 0)}, {.name = "bottom", .material = mw});
+  sim.add_wall(walls::Segment{Vec2(-e, ly), Vec2(lx + e, ly)}, {.name = "top", .material = mw});
+  sim.add_wall(walls::Segment{Vec2(0, -e), Vec2(0, ly + e)}, {.name = "left", .material = mw});
+  sim.add_wall(walls::Segment{Vec2(lx, -e), Vec2(lx, ly + e)}, {.name = "right", .material = mw});
   return sim;
 }
 
