@@ -2388,13 +2388,11 @@ private:
     const bool check = skin_ > 0.0 && snapshot_.size() == p.size();
     const bool kick = kick_pending_;
     kick_pending_ = false;
-    const Fused f{dt, g, ct, cr, spins, orient, kick};
+    const Fused f{dt, g, ct, cr, spins, orient, kick, check};
     double d2 = 0.0;
 #pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i) {
-      const double d = fused_one(static_cast<std::size_t>(i), f);
-      if (check) d2 = std::max(d2, d);
-    }
+    for (long i = 0; i < n; ++i)
+      d2 = std::max(d2, fused_one(static_cast<std::size_t>(i), f));
     fused_d2_ = check ? d2 : -1.0;
     prefilled_ = true;
   }
@@ -2405,7 +2403,8 @@ private:
     V g;           ///< gravity at the end of the step [m/s^2]
     double ct, cr; ///< global damping [N s/m], [N m s]
     bool spins, orient;
-    bool kick; ///< the last step's second half kick is pending
+    bool kick;  ///< the last step's second half kick is pending
+    bool check; ///< measure the displacement since the last build (a snapshot exists)
   };
   /// The fused pass for particle i (see fused_before); returns its squared displacement since the
   /// last neighbour-list build.
@@ -2433,7 +2432,7 @@ private:
       p.torque[i] = zero<A>();
     }
     if constexpr (thermal) p.heat_rate[i] = 0.0;
-    return i < snapshot_.size() ? (p.position[i] - snapshot_[i]).squaredNorm() : 0.0;
+    return f.check ? (p.position[i] - snapshot_[i]).squaredNorm() : 0.0;
   }
   /// True if angular velocities are integrated from torques: a contact model makes torques, or
   /// a prescribed torque acts.
