@@ -323,6 +323,7 @@ public:
     }
     const auto n = materials_.size();
     pair_params_[a * n + b] = pair_params_[b * n + a] = p;
+    resolve_pairs();
     initialized_ = false;
   }
   /// The contact-model parameters of a pair of materials (SimulationParams::contact unless
@@ -1423,6 +1424,13 @@ private:
         pairs_[a * nm + b] =
             PairProperties::mix(materials_[a], materials_[b], overrides_[a * nm + b]);
     for (auto& pp : pairs_) pp.fluid_conductivity = params_.fluid.conductivity;
+    resolve_pairs();
+  }
+  /// The contact parameters of each pair type with their per-pair constants worked out.
+  void resolve_pairs() {
+    pair_resolved_.resize(pair_params_.size());
+    for (std::size_t k = 0; k < pair_params_.size(); ++k)
+      pair_resolved_[k] = Contact::resolve(pair_params_[k], pairs_[k]);
   }
   static std::string to_text(const V& v) {
     std::string s = "(";
@@ -1554,8 +1562,8 @@ private:
     const auto& p = particles_;
     const V d = p.position[j] - p.position[i];
     const double dist = std::sqrt(d.squaredNorm());
-    pair_geometry<D>(g, p.position[i], V(d / dist), dist, p.radius[i], p.radius[j], p.mass[i],
-                     p.mass[j], v[i], v[j], w[i], w[j]);
+    pair_geometry<D>(g, p.position[i], V(d * (1.0 / dist)), dist, p.radius[i], p.radius[j],
+                     p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
   }
   GRAIN_INLINE bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g,
                                   const std::vector<V>& v, const std::vector<A>& w) const {
@@ -2002,6 +2010,10 @@ private:
     [[maybe_unused]] const bool heat = heat_on_;
     const bool track = tracking_;
     double work = 0.0; // power the contacts of row i deliver to the bodies [W]
+    // the loads of i are summed in registers over the row (no other row writes them meanwhile:
+    // partners j > i) and stored after it, in the same order of additions
+    V fi = p.force[i];
+    A ti = p.torque[i];
     // a touching pair: geometry, contact law, loads (and heat)
     auto touching = [&](std::uint32_t e, std::uint32_t j) GRAIN_INLINE_LAMBDA {
       pair_geometry_of(i, j, g, vf, wf);
@@ -2009,13 +2021,13 @@ private:
         set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
       const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
       const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
-      const auto& cp = pair_params_[mij];
+      const auto& cp = var_pairs_ ? pair_params_[mij] : pair_resolved_[mij];
       History& h = hist(history_, e);
       auto r = Contact::evaluate(g, pair, cp, h, dt);
-      p.force[i] += r.force;
+      fi += r.force;
       p.force[j] -= r.force;
       if constexpr (Contact::has_torque) {
-        p.torque[i] += r.torque_i;
+        ti += r.torque_i;
         p.torque[j] += r.torque_j;
       }
       if (track) {
@@ -2072,10 +2084,24 @@ private:
                 [[unlikely]]
               history_[e] = blank_history_;
         }
+        // the partners' data that the contact law reads and the loads it adds to are requested
+        // for all touching pairs of the block first, so that their cache misses overlap
+        for (std::uint32_t k = 0; k < nhit; ++k) {
+          const auto j = list_.partners[hit[k]];
+          GRAIN_PREFETCH(&p.mass[j], 0);
+          GRAIN_PREFETCH(&vf[j], 0);
+          GRAIN_PREFETCH(&p.force[j], 1);
+          if constexpr (Contact::has_torque) {
+            GRAIN_PREFETCH(&wf[j], 0);
+            GRAIN_PREFETCH(&p.torque[j], 1);
+          }
+        }
         for (std::uint32_t k = 0; k < nhit; ++k)
           touching(hit[k], list_.partners[hit[k]]);
       }
     }
+    p.force[i] = fi;
+    if constexpr (Contact::has_torque) p.torque[i] = ti;
     for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
       const auto w = list_.walls[e];
       if (!touching_wall(i, w, g, vf, wf)) {
@@ -2092,7 +2118,7 @@ private:
         set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
       const std::size_t miw = p.material[i] * materials_.size() + walls_[w].options.material;
       const auto& pair = var_pairs_ ? wall_pair_cache_[e] : pairs_[miw];
-      const auto& cp = pair_params_[miw];
+      const auto& cp = var_pairs_ ? pair_params_[miw] : pair_resolved_[miw];
       History& h = hist(wall_history_, e);
       auto r = Contact::evaluate(g, pair, cp, h, dt);
       p.force[i] += r.force;
@@ -2677,6 +2703,9 @@ private:
   /// Contact-model parameters per pair of materials (nm x nm; SimulationParams::contact unless
   /// set_pair_parameters gave a pair its own).
   std::vector<typename Contact::Params> pair_params_;
+  /// pair_params_ resolved with pairs_ (Contact::resolve), used by the force loop while the
+  /// contact properties are those of the materials (no variable property changes them).
+  std::vector<typename Contact::Params> pair_resolved_;
   Particles particles_;
   std::vector<Wall<D>> walls_;
   NeighborList list_;

@@ -142,6 +142,64 @@ TEST_CASE("interaction: action equals reaction and torques from the contact poin
   CHECK(total.norm() < 1e-12 * r.force.norm() * 1e-3);
 }
 
+namespace {
+/// Evaluates a sliding-and-sticking sequence of contacts with `p` and with Contact::resolve(p):
+/// the resolved parameters must give the same bits.
+template <class Contact>
+void check_resolved_same_bits(const typename Contact::Params& p, const PairProperties& pair) {
+  const auto q = Contact::resolve(p, pair);
+  typename Contact::template History<3> h1{}, h2{};
+  for (int k = 0; k < 40; ++k) {
+    ContactGeometry<3> g;
+    const double overlap = 1e-6 * (1 + k % 7);
+    const Vec3 n = Vec3(1.0, 0.02 * k, -0.01 * k).normalized();
+    pair_geometry<3>(g, Vec3::Zero(), n, 2e-3 - overlap, 1e-3, 1e-3, 1e-5, 2e-5,
+                     Vec3(0.1 - 0.01 * k, 0.05, 0.002 * k), Vec3::Zero(), Vec3(0, 0, 3 - 0.3 * k),
+                     Vec3(1, 0, 0));
+    const auto r1 = Contact::template evaluate<3>(g, pair, p, h1, 1e-6);
+    const auto r2 = Contact::template evaluate<3>(g, pair, q, h2, 1e-6);
+    REQUIRE(r1.force == r2.force);
+    REQUIRE(r1.torque_i == r2.torque_i);
+    REQUIRE(r1.torque_j == r2.torque_j);
+    REQUIRE(r1.normal.damping == r2.normal.damping);
+  }
+}
+} // namespace
+
+TEST_CASE("interaction: resolved pair constants give the same bits, worked out once") {
+  const auto pair = pair_of(1e7, 0.3, 0.5, 0.5);
+  // Tsuji alpha from the restitution and the Mindlin stiffness ratio are filled in
+  const auto q = HertzSDS::resolve({}, pair);
+  CHECK(q.normal.damping.alpha ==
+        grain::test::approx(normal::TsujiDamping::exact_alpha(std::log(0.5))).epsilon(1e-15));
+  CHECK(q.tangent.stiffness_ratio == grain::test::approx((1 - 0.3) / (1 - 0.15)).epsilon(1e-15));
+  // given values are kept
+  HertzSDS::Params given;
+  given.normal.damping.alpha = 0.7;
+  given.tangent.stiffness = 123.0;
+  const auto qg = HertzSDS::resolve(given, pair);
+  CHECK(qg.normal.damping.alpha == 0.7);
+  CHECK(qg.tangent.stiffness_ratio == 0.0);
+  given.tangent.stiffness = 0.0;
+  given.tangent.stiffness_ratio = 0.5;
+  CHECK(HertzSDS::resolve(given, pair).tangent.stiffness_ratio == 0.5);
+  HertzSDS::Params norouzi;
+  norouzi.normal.damping.map = normal::TsujiMap::norouzi;
+  CHECK(HertzSDS::resolve(norouzi, pair).normal.damping.alpha ==
+        normal::TsujiDamping::norouzi_alpha(std::log(0.5)));
+  // same bits with and without resolving, for several models and restitutions
+  for (double e : {0.1, 0.5, 0.9}) {
+    const auto pe = pair_of(1e7, 0.25, e, 0.4);
+    check_resolved_same_bits<HertzSDS>({}, pe);
+    check_resolved_same_bits<HertzSDS>(norouzi, pe);
+    check_resolved_same_bits<Interaction<normal::Hertz<>, tangent::Spring>>({}, pe);
+    check_resolved_same_bits<Interaction<normal::Hertz<>, tangent::SpringSlider>>({}, pe);
+    check_resolved_same_bits<
+        Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider>>({}, pe);
+    check_resolved_same_bits<presets::HertzMindlin>({}, pe);
+  }
+}
+
 // presets are ordinary interactions; their histories hold only what their models need
 static_assert(sizeof(presets::HertzMindlin::History<3>) == sizeof(tangent::Mindlin::History<3>));
 static_assert(presets::LinearCoulomb::stateless<3> == false);

@@ -58,6 +58,12 @@ struct Hertz {
   }
 
   static void validate(const Params& p) { Damping::validate(p.damping, object()); }
+  /// The damping policy's per-pair constants worked out (see Interaction::resolve).
+  static Params resolve(Params p, const PairProperties& pair) {
+    if constexpr (requires { Damping::resolve(p.damping, pair); })
+      p.damping = Damping::resolve(p.damping, pair);
+    return p;
+  }
 
   /// K_hz = 4/3 E* sqrt(R*) [N/m^1.5].
   static double k_hertz(const PairProperties& pair, double r_eff) {
@@ -67,13 +73,13 @@ struct Hertz {
   template <int D>
   GRAIN_INLINE static NormalResult force(const ContactGeometry<D>& g, const PairProperties& pair,
                                          const Params& p, History<D>&) {
-    const double kh = k_hertz(pair, g.r_eff);
-    const double sd = std::sqrt(g.overlap);
-    const double fe = kh * g.overlap * sd;
-    const double eta = Damping::coefficient(pair, p.damping, kh, g.r_eff, g.m_eff, sd);
+    // one square root: K_hz sqrt(delta) = 4/3 E* a with a = sqrt(R* delta)
+    const double ks = 4.0 / 3.0 * pair.young_eff * std::sqrt(g.r_eff * g.overlap);
+    const double fe = ks * g.overlap;
+    const double eta = Damping::coefficient(pair, p.damping, ks, g.r_eff, g.m_eff, g.overlap);
     double f = fe + eta * g.normal_velocity;
     if (p.no_cohesion && f < 0.0) f = 0.0;
-    return {f, 1.5 * kh * sd, eta, 0.4 * fe * g.overlap};
+    return {f, 1.5 * ks, eta, 0.4 * fe * g.overlap};
   }
 
   /// Tangent stiffness at the maximum overlap of an undamped impact at velocity v [m/s]:

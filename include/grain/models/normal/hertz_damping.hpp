@@ -5,16 +5,19 @@
 ///
 /// | policy | eta(delta) [N s/m] | parameter (in `Hertz<P>::Params::damping`) | restitution |
 /// |---|---|---|---|
-/// | `TsujiDamping` | alpha sqrt(m* K_hz) delta^(1/4) | `alpha` (dimensionless, default from e) | e(alpha), independent of v |
-/// | `CriticalRatioDamping` | xi sqrt(8 E* m* sqrt(R*)) delta^(1/4) | `ratio` xi (required) | e(xi sqrt(6)) as Tsuji |
-/// | `KuwabaraKonoDamping` | eta_KK delta^(1/2) | `coefficient` eta_KK [N s/m^(3/2)] (required) | decreases with v |
-/// | `LeeHerrmannDamping` | eta_LH m* | `coefficient` eta_LH [1/s] (required) | depends on v |
+/// | `TsujiDamping` | alpha sqrt(m* K_hz) delta^(1/4) | `alpha` (dimensionless, default from e) |
+/// e(alpha), independent of v | | `CriticalRatioDamping` | xi sqrt(8 E* m* sqrt(R*)) delta^(1/4) |
+/// `ratio` xi (required) | e(xi sqrt(6)) as Tsuji | | `KuwabaraKonoDamping` | eta_KK delta^(1/2) |
+/// `coefficient` eta_KK [N s/m^(3/2)] (required) | decreases with v | | `LeeHerrmannDamping` |
+/// eta_LH m* | `coefficient` eta_LH [1/s] (required) | depends on v |
 ///
 /// A policy is a struct with `name` (its C++ name, used in error messages), `Params` (default
 /// constructible), `static void validate(const Params&, const std::string& object)` (throws
 /// `InputError` through `detail::require*`) and `static double coefficient(const PairProperties&,
-/// const Params&, double k_hz, double r_eff, double m_eff, double sqrt_delta)` returning eta
-/// [N s/m] at the overlap delta; optionally `hertz_name`, the readable name of the whole model.
+/// const Params&, double k_secant, double r_eff, double m_eff, double delta)` returning eta
+/// [N s/m] at the overlap delta, where k_secant = K_hz sqrt(delta) = 4/3 E* a [N/m] is the secant
+/// stiffness F_el/delta (a = sqrt(R* delta), computed once per contact); optionally `hertz_name`,
+/// the readable name of the whole model.
 
 #include <cmath>
 #include <grain/core/config.hpp>
@@ -71,9 +74,14 @@ struct TsujiDamping {
     return p.map == TsujiMap::norouzi ? norouzi_alpha(pair.log_restitution)
                                       : exact_alpha(pair.log_restitution);
   }
-  GRAIN_INLINE static double coefficient(const PairProperties& pair, const Params& p, double k_hz,
-                                         double, double m_eff, double sqrt_delta) {
-    return alpha(pair, p) * std::sqrt(m_eff * k_hz * sqrt_delta);
+  /// alpha of the pair worked out once (given, or from its restitution by the map).
+  static Params resolve(Params p, const PairProperties& pair) {
+    p.alpha = alpha(pair, p);
+    return p;
+  }
+  GRAIN_INLINE static double coefficient(const PairProperties& pair, const Params& p,
+                                         double k_secant, double, double m_eff, double) {
+    return alpha(pair, p) * std::sqrt(m_eff * k_secant);
   }
 };
 
@@ -92,9 +100,10 @@ struct CriticalRatioDamping {
     detail::require(std::isfinite(p.ratio) && p.ratio >= 0.0, object, "damping.ratio", p.ratio,
                     "[0, inf) (the critical damping ratio must be given)");
   }
-  GRAIN_INLINE static double coefficient(const PairProperties& pair, const Params& p, double,
-                                         double r_eff, double m_eff, double sqrt_delta) {
-    return p.ratio * std::sqrt(8.0 * pair.young_eff * m_eff * std::sqrt(r_eff) * sqrt_delta);
+  // 8 E* sqrt(R*) delta^(1/2) = 8 E* a = 6 k_secant
+  GRAIN_INLINE static double coefficient(const PairProperties&, const Params& p, double k_secant,
+                                         double, double m_eff, double) {
+    return p.ratio * std::sqrt(6.0 * m_eff * k_secant);
   }
 };
 
@@ -115,8 +124,8 @@ struct KuwabaraKonoDamping {
                     "[0, inf) N s/m^1.5 (the Kuwabara-Kono coefficient must be given)");
   }
   GRAIN_INLINE static double coefficient(const PairProperties&, const Params& p, double, double,
-                                         double, double sqrt_delta) {
-    return p.coefficient * sqrt_delta;
+                                         double, double delta) {
+    return p.coefficient * std::sqrt(delta);
   }
 };
 

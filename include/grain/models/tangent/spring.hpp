@@ -31,6 +31,10 @@ struct Spring {
   template <int D>
   using History = detail::ElasticHistory<D>;
 
+  /// The Mindlin stiffness ratio of the pair worked out once (see Interaction::resolve).
+  static Params resolve(Params p, const PairProperties& pair) {
+    return detail::resolve_stiffness_ratio(p, pair);
+  }
   static void validate(const Params& p) {
     grain::detail::require_non_negative("tangent::Spring", "stiffness", p.stiffness);
     grain::detail::require_non_negative("tangent::Spring", "stiffness_ratio", p.stiffness_ratio);

@@ -46,6 +46,10 @@ struct SpringDashpotSlider {
   template <int D>
   using History = detail::SpringHistory<D>;
 
+  /// The Mindlin stiffness ratio of the pair worked out once (see Interaction::resolve).
+  static Params resolve(Params p, const PairProperties& pair) {
+    return detail::resolve_stiffness_ratio(p, pair);
+  }
   static void validate(const Params& p) {
     constexpr const char* m = "tangent::SpringDashpotSlider";
     grain::detail::require_non_negative(m, "stiffness", p.stiffness);

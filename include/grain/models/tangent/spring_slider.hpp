@@ -29,6 +29,10 @@ struct SpringSlider {
   template <int D>
   using History = detail::SpringHistory<D>;
 
+  /// The Mindlin stiffness ratio of the pair worked out once (see Interaction::resolve).
+  static Params resolve(Params p, const PairProperties& pair) {
+    return detail::resolve_stiffness_ratio(p, pair);
+  }
   static void validate(const Params& p) {
     grain::detail::require_non_negative("tangent::SpringSlider", "stiffness", p.stiffness);
     grain::detail::require_non_negative("tangent::SpringSlider", "stiffness_ratio",

@@ -199,14 +199,27 @@ GRAIN_INLINE TangentResult<D> spring_step(const ContactGeometry<D>& g, const Pai
   return r;
 }
 
+/// Mindlin's ratio of tangential to normal stiffness, (1 - nu)/(1 - nu/2), nu the pair's mean
+/// Poisson ratio (Mindlin, J. Appl. Mech. 16 (1949) 259).
+inline double mindlin_ratio(const PairProperties& pair) {
+  const double nu = pair.poisson_avg;
+  return (1.0 - nu) / (1.0 - 0.5 * nu);
+}
+
 /// Stiffness [N/m] of a linear spring: `given` if > 0, else `ratio` (0 = the Mindlin ratio
 /// (1 - nu)/(1 - nu/2), nu the mean Poisson ratio) times the normal model's tangent stiffness.
 GRAIN_INLINE double linear_stiffness(double given, double ratio, const PairProperties& pair,
                                      const NormalResult& n) {
   if (given > 0.0) return given;
-  const double nu = pair.poisson_avg;
-  const double q = ratio > 0.0 ? ratio : (1.0 - nu) / (1.0 - 0.5 * nu);
-  return q * n.stiffness;
+  return (ratio > 0.0 ? ratio : mindlin_ratio(pair)) * n.stiffness;
+}
+
+/// Parameters P (members stiffness, stiffness_ratio) with the Mindlin ratio of the pair filled
+/// in when the stiffness follows it: the per-pair constant of linear_stiffness worked out once.
+template <class P>
+P resolve_stiffness_ratio(P p, const PairProperties& pair) {
+  if (!(p.stiffness > 0.0) && !(p.stiffness_ratio > 0.0)) p.stiffness_ratio = mindlin_ratio(pair);
+  return p;
 }
 
 /// Damping [N s/m] with the damping ratio of the normal model: eta_n sqrt(k_t / k_n).
