@@ -2016,14 +2016,15 @@ private:
     A ti = p.torque[i];
     // a touching pair: geometry, contact law, loads (and heat)
     auto touching = [&](std::uint32_t e, std::uint32_t j) GRAIN_INLINE_LAMBDA {
-      pair_geometry_of(i, j, g, vf, wf);
+      ContactGeometry<D> gc; // local to the contact: kept in registers
+      pair_geometry_of(i, j, gc, vf, wf);
       if constexpr (predicts_velocity && Contact::has_torque)
-        set_slip_velocity<D>(g, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
+        set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
       const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
       const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
       const auto& cp = var_pairs_ ? pair_params_[mij] : pair_resolved_[mij];
       History& h = hist(history_, e);
-      auto r = Contact::evaluate(g, pair, cp, h, dt);
+      auto r = Contact::evaluate(gc, pair, cp, h, dt);
       fi += r.force;
       p.force[j] -= r.force;
       if constexpr (Contact::has_torque) {
@@ -2037,9 +2038,9 @@ private:
       if constexpr (thermal) {
         if (heat) {
           const double H =
-              Contact::conductance(g, pair, r.normal, cp, h, dt, length(), cell_radius_pair(e));
+              Contact::conductance(gc, pair, r.normal, cp, h, dt, length(), cell_radius_pair(e));
           const double q = H * (p.temperature[j] - p.temperature[i]);
-          const double w = dissipation_heat(g, r);
+          const double w = dissipation_heat(gc, r);
           p.heat_rate[i] += q + w;
           p.heat_rate[j] += w - q;
         }
@@ -2414,11 +2415,11 @@ private:
     const bool check = skin_ > 0.0 && snapshot_.size() == p.size();
     const bool kick = kick_pending_;
     kick_pending_ = false;
-    const Fused f{dt, g, ct, cr, spins, orient, kick, check};
-    double d2 = 0.0;
-#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i)
-      d2 = std::max(d2, fused_one(static_cast<std::size_t>(i), f));
+    const Fused f{dt, g, ct, cr, spins, orient};
+    // the two flags that change between steps select a loop compiled for them
+    const double d2 =
+        kick ? (check ? fused_pass<true, true>(n, f) : fused_pass<true, false>(n, f))
+             : (check ? fused_pass<false, true>(n, f) : fused_pass<false, false>(n, f));
     fused_d2_ = check ? d2 : -1.0;
     prefilled_ = true;
   }
@@ -2429,15 +2430,25 @@ private:
     V g;           ///< gravity at the end of the step [m/s^2]
     double ct, cr; ///< global damping [N s/m], [N m s]
     bool spins, orient;
-    bool kick;  ///< the last step's second half kick is pending
-    bool check; ///< measure the displacement since the last build (a snapshot exists)
   };
+  /// The fused pass over all n particles, with the last step's second half kick if Kick, and the
+  /// displacement since the last neighbour-list build measured if Check (a snapshot exists);
+  /// returns the largest squared displacement (0 without Check).
+  template <bool Kick, bool Check>
+  double fused_pass(long n, const Fused& f) {
+    double d2 = 0.0;
+#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
+    for (long i = 0; i < n; ++i)
+      d2 = std::max(d2, fused_one<Kick, Check>(static_cast<std::size_t>(i), f));
+    return d2;
+  }
   /// The fused pass for particle i (see fused_before); returns its squared displacement since the
   /// last neighbour-list build.
+  template <bool Kick, bool Check>
   GRAIN_INLINE double fused_one(std::size_t i, const Fused& f) {
     auto& p = particles_;
     const double half_dt = 0.5 * f.dt;
-    if (f.kick) after_one(i, f.dt, f.spins); // the last step's second half kick
+    if constexpr (Kick) after_one(i, f.dt, f.spins); // the last step's second half kick
     before_one(i, f.dt, f.spins, f.orient);
     if constexpr (predicts_velocity) {
       const V v = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
@@ -2458,7 +2469,10 @@ private:
       p.torque[i] = zero<A>();
     }
     if constexpr (thermal) p.heat_rate[i] = 0.0;
-    return f.check ? (p.position[i] - snapshot_[i]).squaredNorm() : 0.0;
+    if constexpr (Check)
+      return (p.position[i] - snapshot_[i]).squaredNorm();
+    else
+      return 0.0;
   }
   /// True if angular velocities are integrated from torques: a contact model makes torques, or
   /// a prescribed torque acts.
