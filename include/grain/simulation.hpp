@@ -1219,6 +1219,7 @@ public:
                          " is invalid without a thermal state; valid: mechanical properties");
     if (is_contact_property(vp.property) && !var_pairs_) {
       var_pairs_ = true;
+      resolve_pairs();
       for (auto& o : over_) o.assign(particles_.size(), std::numeric_limits<double>::quiet_NaN());
     }
     vprops_.push_back({std::move(vp), g});
@@ -1426,11 +1427,13 @@ private:
     for (auto& pp : pairs_) pp.fluid_conductivity = params_.fluid.conductivity;
     resolve_pairs();
   }
-  /// The contact parameters of each pair type with their per-pair constants worked out.
+  /// The contact parameters of each pair type with their per-pair constants worked out (left
+  /// as given while a variable property changes contact properties per particle).
   void resolve_pairs() {
     pair_resolved_.resize(pair_params_.size());
     for (std::size_t k = 0; k < pair_params_.size(); ++k)
-      pair_resolved_[k] = Contact::resolve(pair_params_[k], pairs_[k]);
+      pair_resolved_[k] =
+          var_pairs_ ? pair_params_[k] : Contact::resolve(pair_params_[k], pairs_[k]);
   }
   static std::string to_text(const V& v) {
     std::string s = "(";
@@ -2022,7 +2025,7 @@ private:
         set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
       const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
       const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
-      const auto& cp = var_pairs_ ? pair_params_[mij] : pair_resolved_[mij];
+      const auto& cp = pair_resolved_[mij];
       History& h = hist(history_, e);
       auto r = Contact::evaluate(gc, pair, cp, h, dt);
       fi += r.force;
@@ -2119,7 +2122,7 @@ private:
         set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
       const std::size_t miw = p.material[i] * materials_.size() + walls_[w].options.material;
       const auto& pair = var_pairs_ ? wall_pair_cache_[e] : pairs_[miw];
-      const auto& cp = var_pairs_ ? pair_params_[miw] : pair_resolved_[miw];
+      const auto& cp = pair_resolved_[miw];
       History& h = hist(wall_history_, e);
       auto r = Contact::evaluate(g, pair, cp, h, dt);
       p.force[i] += r.force;
@@ -2717,8 +2720,9 @@ private:
   /// Contact-model parameters per pair of materials (nm x nm; SimulationParams::contact unless
   /// set_pair_parameters gave a pair its own).
   std::vector<typename Contact::Params> pair_params_;
-  /// pair_params_ resolved with pairs_ (Contact::resolve), used by the force loop while the
-  /// contact properties are those of the materials (no variable property changes them).
+  /// What the force loop uses: pair_params_ resolved with pairs_ (Contact::resolve) while the
+  /// contact properties are those of the materials, pair_params_ itself once a variable
+  /// property changes them per particle.
   std::vector<typename Contact::Params> pair_resolved_;
   Particles particles_;
   std::vector<Wall<D>> walls_;

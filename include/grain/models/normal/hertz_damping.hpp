@@ -3,13 +3,14 @@
 /// Damping policies of `normal::Hertz<Damping>`: the viscous part F_v = eta(delta) d(delta)/dt
 /// added to the Hertz elastic force K_hz delta^(3/2), K_hz = 4/3 E* sqrt(R*).
 ///
+// clang-format off
 /// | policy | eta(delta) [N s/m] | parameter (in `Hertz<P>::Params::damping`) | restitution |
 /// |---|---|---|---|
-/// | `TsujiDamping` | alpha sqrt(m* K_hz) delta^(1/4) | `alpha` (dimensionless, default from e) |
-/// e(alpha), independent of v | | `CriticalRatioDamping` | xi sqrt(8 E* m* sqrt(R*)) delta^(1/4) |
-/// `ratio` xi (required) | e(xi sqrt(6)) as Tsuji | | `KuwabaraKonoDamping` | eta_KK delta^(1/2) |
-/// `coefficient` eta_KK [N s/m^(3/2)] (required) | decreases with v | | `LeeHerrmannDamping` |
-/// eta_LH m* | `coefficient` eta_LH [1/s] (required) | depends on v |
+/// | `TsujiDamping` | alpha sqrt(m* K_hz) delta^(1/4) | `alpha` (dimensionless, default from e) | e(alpha), independent of v |
+/// | `CriticalRatioDamping` | xi sqrt(8 E* m* sqrt(R*)) delta^(1/4) | `ratio` xi (required) | e(xi sqrt(6)) as Tsuji |
+/// | `KuwabaraKonoDamping` | eta_KK delta^(1/2) | `coefficient` eta_KK [N s/m^(3/2)] (required) | decreases with v |
+/// | `LeeHerrmannDamping` | eta_LH m* | `coefficient` eta_LH [1/s] (required) | depends on v |
+// clang-format on
 ///
 /// A policy is a struct with `name` (its C++ name, used in error messages), `Params` (default
 /// constructible), `static void validate(const Params&, const std::string& object)` (throws
