@@ -2053,8 +2053,9 @@ private:
     if constexpr (Contact::indirect) {
       for (auto e = row_begin; e < row_end; ++e) {
         const auto j = list_.partners[e];
-        if (touching_pair(i, j, g, vf, wf)) {
-          touching(e, j);
+        const double rs = p.radius[i] + p.radius[j];
+        if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+          touching(e, j); // the geometry is made there, once
           continue;
         }
         if constexpr (!Contact::template stateless<D>) history_[e] = History{};
