@@ -146,10 +146,37 @@ TEST_CASE("results are bit-identical with 1 and 2 threads") {
     sim.steps(300);
     return state_bits(sim);
   };
+  // a block large enough in all three directions for a list span at which the contact loop
+  // prefetches rows ahead (the cell order makes the span about two planes of cells across the
+  // shorter directions)
+  auto layer = [](int threads) {
+    omp_set_num_threads(threads);
+    using Sim = Simulation<Sphere, search::CellList, Contact3>;
+    Sim sim({.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
+    auto m = sim.add_material(soft);
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int w = 34;
+    for (int x = 0; x < w; ++x)
+      for (int y = 0; y < w; ++y)
+        for (int z = 0; z < w; ++z)
+          sim.add_particle({.position = Vec3(x, y, z) * 1.02e-3 + Vec3::Constant(6e-4),
+                            .radius = 5e-4,
+                            .material = m,
+                            .velocity = 0.1 * Vec3(u(rng), u(rng), u(rng))});
+    sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.material = m});
+    sim.steps(100);
+    const double span_bytes = sim.neighbor_list().max_span * Sim::row_bytes;
+    CHECK(span_bytes > Sim::prefetch_span_bytes);
+    return state_bits(sim);
+  };
   const int saved = omp_get_max_threads();
   const auto a3 = run3(1), b3 = run3(2);
   const auto a2 = run2(1), b2 = run2(2);
+  const auto al = layer(1), bl = layer(2);
   omp_set_num_threads(saved);
+  REQUIRE(al.size() == bl.size());
+  CHECK(std::memcmp(al.data(), bl.data(), al.size() * sizeof(double)) == 0);
   REQUIRE(a3.size() == b3.size());
   CHECK(std::memcmp(a3.data(), b3.data(), a3.size() * sizeof(double)) == 0);
   REQUIRE(a2.size() == b2.size());
