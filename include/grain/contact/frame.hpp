@@ -57,16 +57,17 @@ struct ContactFrame<3> {
     // image of m = -z (s = S z = (1, 2, 3)/sqrt(14), a direction few contacts have)
     const Vec3 m = to_pole_frame(n);
     const double c = 1.0 + m.z();
-    Vec3 b1, b2;
+    Vec3 b1;
     if (c > 1e-12) {
       const double a = 1.0 / c, b = -m.x() * m.y() * a;
       b1 = Vec3(1.0 - m.x() * m.x() * a, b, -m.x());
-      b2 = Vec3(b, 1.0 - m.y() * m.y() * a, -m.y());
     } else {
       b1 = Vec3(0.0, -1.0, 0.0);
-      b2 = Vec3(-1.0, 0.0, 0.0);
     }
-    return {n, from_pole_frame(b1), from_pole_frame(b2)};
+    // Frisvad's vectors lose orthogonality as eps / (1 + m_z) towards the pole (1e-14 seen);
+    // one Gram-Schmidt step keeps the basis orthonormal to rounding everywhere, and continuous
+    b1 = (b1 - b1.dot(m) * m).normalized();
+    return {n, from_pole_frame(b1), from_pole_frame(m.cross(b1))};
   }
   /// Components (normal, tangent 1, tangent 2) of a global vector.
   Vec3 to_local(const Vec3& v) const { return {v.dot(normal), v.dot(tangent1), v.dot(tangent2)}; }

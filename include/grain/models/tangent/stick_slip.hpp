@@ -84,12 +84,19 @@ inline void validate_restitution(const char* model, double e) {
                          "[0, 1], or < 0 for not used");
 }
 
-/// The stored elongation rotated into the tangent plane of normal n, keeping its length.
+/// The stored elongation rotated into the tangent plane of normal n, keeping its length. In 2D
+/// the tangent line is spanned by t = (-n_y, n_x): xi = sign(xi . t) |xi| t (one square root,
+/// no division); in 3D the projection xi - (xi . n) n is scaled back to |xi|.
 template <int D>
 GRAIN_INLINE Vec<D> carried(const PlainVec<D>& stored, const Vec<D>& n) {
   Vec<D> xi = load<D>(stored);
   const double old2 = xi.squaredNorm();
-  if (old2 > 0.0) {
+  if constexpr (D == 2) {
+    const Vec<D> t(-n.y(), n.x());
+    const double s = xi.dot(t);
+    if (!(old2 > 0.0) || s == 0.0) return Vec<D>::Zero();
+    return std::copysign(std::sqrt(old2), s) * t;
+  } else if (old2 > 0.0) {
     xi -= xi.dot(n) * n;
     const double new2 = xi.squaredNorm();
     xi = new2 > 0.0 ? Vec<D>(xi * std::sqrt(old2 / new2)) : Vec<D>(Vec<D>::Zero());
