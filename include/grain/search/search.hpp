@@ -75,12 +75,17 @@ concept Search = requires {
 
 namespace detail {
 
-/// Uniform grid over the particle bounding box.
+/// Uniform grid over the particle bounding box. Cells are numbered with the axis of the
+/// smallest extent fastest and that of the largest slowest: sorted by cell, the particles of
+/// neighbouring slabs of cells along the slowest axis are then closest in memory (the list span,
+/// about two slabs, is smallest).
 template <int D>
 struct Grid {
   Vec<D> lo;
   double cell = 1.0;
   std::array<long, 3> dims{1, 1, 1};
+  std::array<int, 3> axis{0, 1, 2};    ///< the axes from fastest to slowest
+  std::array<long, 3> sorted{1, 1, 1}; ///< dims in that order (1 beyond D)
 
   void setup(const std::vector<Vec<D>>& x, double min_cell) {
     Vec<D> mn = Vec<D>::Constant(std::numeric_limits<double>::max());
@@ -103,14 +108,24 @@ struct Grid {
       if (total <= max_cells) break;
       cell *= 1.5;
     }
+    // stable: equal extents keep x fastest
+    std::stable_sort(axis.begin(), axis.begin() + D,
+                     [&](int a, int b) { return mx[a] - mn[a] < mx[b] - mn[b]; });
+    for (int k = 0; k < D; ++k)
+      sorted[k] = dims[axis[k]];
   }
   long coord(const Vec<D>& p, int d) const {
     return std::clamp<long>(static_cast<long>((p[d] - lo[d]) / cell), 0, dims[d] - 1);
   }
   long index(const Vec<D>& p) const {
-    long c = coord(p, D - 1);
-    for (int d = D - 2; d >= 0; --d) c = c * dims[d] + coord(p, d);
+    long c = coord(p, axis[D - 1]);
+    for (int k = D - 2; k >= 0; --k)
+      c = c * sorted[k] + coord(p, axis[k]);
     return c;
+  }
+  /// Index of the cell with coordinates c along the sorted axes (fastest first).
+  long index_sorted(long c0, long c1, long c2) const {
+    return c0 + sorted[0] * (c1 + sorted[1] * c2);
   }
   long count() const {
     long n = 1;
@@ -149,7 +164,8 @@ void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& wal
   }
 }
 
-/// Permutation that sorts particles by cell (x fastest); stable within a cell.
+/// Permutation that sorts particles by cell (see Grid for the order of the axes); stable within
+/// a cell.
 template <int D>
 std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size) {
   Grid<D> grid;
@@ -188,13 +204,17 @@ void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, 
   std::vector<std::uint32_t> row;
   for (std::size_t i = 0; i < n; ++i) {
     row.clear();
-    long c[3] = {0, 0, 0};
-    for (int d = 0; d < D; ++d) c[d] = grid.coord(p.position[i], d);
-    const long z0 = D == 3 ? std::max(c[2] - 1, 0L) : 0, z1 = D == 3 ? std::min(c[2] + 1, grid.dims[2] - 1) : 0;
-    for (long z = z0; z <= z1; ++z)
-      for (long y = std::max(c[1] - 1, 0L); y <= std::min(c[1] + 1, grid.dims[1] - 1); ++y)
-        for (long x = std::max(c[0] - 1, 0L); x <= std::min(c[0] + 1, grid.dims[0] - 1); ++x) {
-          const long cell = x + grid.dims[0] * (y + grid.dims[1] * z);
+    // the cells around i, by coordinates along the sorted axes (fastest first)
+    long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      const long c = grid.coord(p.position[i], grid.axis[k]);
+      lo[k] = std::max(c - 1, 0L);
+      hi[k] = std::min(c + 1, grid.sorted[k] - 1);
+    }
+    for (long c2 = lo[2]; c2 <= hi[2]; ++c2)
+      for (long c1 = lo[1]; c1 <= hi[1]; ++c1)
+        for (long c0 = lo[0]; c0 <= hi[0]; ++c0) {
+          const long cell = grid.index_sorted(c0, c1, c2);
           for (std::uint32_t k = head[cell]; k < head[cell + 1]; ++k) {
             const std::uint32_t j = members[k];
             if (j <= i) continue;
