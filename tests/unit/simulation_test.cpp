@@ -149,7 +149,7 @@ TEST_CASE("results are bit-identical with 1 and 2 threads") {
   // a block large enough in all three directions for a list span at which the contact loop
   // prefetches rows ahead (the cell order makes the span about two planes of cells across the
   // shorter directions)
-  auto layer = [](int threads) {
+  auto block = [](int threads) {
     omp_set_num_threads(threads);
     using Sim = Simulation<Sphere, search::CellList, Contact3>;
     Sim sim({.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
@@ -173,7 +173,7 @@ TEST_CASE("results are bit-identical with 1 and 2 threads") {
   const int saved = omp_get_max_threads();
   const auto a3 = run3(1), b3 = run3(2);
   const auto a2 = run2(1), b2 = run2(2);
-  const auto al = layer(1), bl = layer(2);
+  const auto al = block(1), bl = block(2);
   omp_set_num_threads(saved);
   REQUIRE(al.size() == bl.size());
   CHECK(std::memcmp(al.data(), bl.data(), al.size() * sizeof(double)) == 0);
