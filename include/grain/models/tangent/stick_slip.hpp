@@ -94,7 +94,7 @@ GRAIN_INLINE Vec<D> carried(const PlainVec<D>& stored, const Vec<D>& n) {
   if constexpr (D == 2) {
     const Vec<D> t(-n.y(), n.x());
     const double s = xi.dot(t);
-    if (!(old2 > 0.0) || s == 0.0) return Vec<D>::Zero();
+    if (old2 == 0.0 || s == 0.0) return Vec<D>::Zero(); // (a NaN goes through, as in 3D)
     return std::copysign(std::sqrt(old2), s) * t;
   } else if (old2 > 0.0) {
     xi -= xi.dot(n) * n;
