@@ -75,6 +75,26 @@
 #endif
 
 namespace grain {
+namespace detail {
+/// Zero if a and b have the same bytes, without a branch (memcmp may branch after each word).
+template <class T>
+GRAIN_INLINE std::uint64_t byte_difference(const T& a, const T& b) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const auto* x = reinterpret_cast<const unsigned char*>(&a);
+  const auto* y = reinterpret_cast<const unsigned char*>(&b);
+  std::uint64_t diff = 0;
+  std::size_t k = 0;
+  for (; k + 8 <= sizeof(T); k += 8) {
+    std::uint64_t u, v;
+    std::memcpy(&u, x + k, 8);
+    std::memcpy(&v, y + k, 8);
+    diff |= u ^ v;
+  }
+  for (; k < sizeof(T); ++k)
+    diff |= static_cast<std::uint64_t>(x[k] ^ y[k]);
+  return diff;
+}
+} // namespace detail
 
 /// What a particle is made of and where it starts (SI units).
 template <int D>
@@ -1632,8 +1652,7 @@ private:
     static_assert(std::is_trivially_copyable_v<History>,
                   "grain: a model's per-contact History must be trivially copyable");
     static const History zero{};
-    return std::memcmp(static_cast<const void*>(&h), static_cast<const void*>(&zero),
-                       sizeof(History)) == 0;
+    return detail::byte_difference(h, zero) == 0;
   }
   /// Removes the entries with a blank history from a CSR list and its histories, in place, and
   /// frees the space.
@@ -1927,11 +1946,7 @@ private:
     for (int phase = 0; phase < 2; ++phase) {
 #pragma omp parallel for schedule(dynamic, 1) if (n >= parallel_threshold)
       for (long c = phase; c < nchunks; c += 2) {
-        const long end = std::min(n, (c + 1) * chunk);
-        for (long i = c * chunk; i < end; ++i) {
-          if (i + ahead < n) prefetch_row(static_cast<std::size_t>(i + ahead));
-          contact_row(static_cast<std::size_t>(i));
-        }
+        contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, n);
       }
     }
     wall_loads_pending_ = !walls_.empty();
@@ -2040,97 +2055,51 @@ private:
     }
   }
 
-  void contact_row(std::size_t i) {
+  /// The contact of list entry e between particles i and j (j > i), which touch: geometry,
+  /// contact law, loads added to both (and heat).
+  GRAIN_INLINE void pair_contact(std::uint32_t e, std::size_t i, std::uint32_t j) {
     auto& p = particles_;
-    ContactGeometry<D> g;
-    const double dt = dt_;
+    const auto& vf = force_velocity();
+    const auto& wf = force_omega();
+    ContactGeometry<D> gc; // local to the contact: kept in registers
+    pair_geometry_of(i, j, gc, vf, wf);
+    if constexpr (predicts_velocity && Contact::has_torque)
+      set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
+    const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
+    const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
+    const auto& cp = pair_resolved_[mij];
+    History& h = hist(history_, e);
+    auto r = Contact::evaluate(gc, pair, cp, h, dt_);
+    p.force[i] += r.force;
+    p.force[j] -= r.force;
+    if constexpr (Contact::has_torque) {
+      p.torque[i] += r.torque_i;
+      p.torque[j] += r.torque_j;
+    }
+    if (tracking_) {
+      double work = r.force.dot(vf[i] - vf[j]);
+      if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
+      work_rows_[i] += work;
+    }
+    if constexpr (thermal) {
+      if (heat_on_) {
+        const double H =
+            Contact::conductance(gc, pair, r.normal, cp, h, dt_, length(), cell_radius_pair(e));
+        const double q = H * (p.temperature[j] - p.temperature[i]);
+        const double w = dissipation_heat(gc, r);
+        p.heat_rate[i] += q + w;
+        p.heat_rate[j] += w - q;
+      }
+    }
+  }
+
+  /// The wall entries of row i.
+  GRAIN_INLINE void wall_contacts(std::size_t i) {
+    auto& p = particles_;
     const auto& vf = force_velocity();
     const auto& wf = force_omega();
     [[maybe_unused]] const bool heat = heat_on_;
-    const bool track = tracking_;
-    double work = 0.0; // power the contacts of row i deliver to the bodies [W]
-    // the loads of i are summed in registers over the row (no other row writes them meanwhile:
-    // partners j > i) and stored after it, in the same order of additions
-    V fi = p.force[i];
-    A ti = p.torque[i];
-    // a touching pair: geometry, contact law, loads (and heat)
-    auto touching = [&](std::uint32_t e, std::uint32_t j) GRAIN_INLINE_LAMBDA {
-      ContactGeometry<D> gc; // local to the contact: kept in registers
-      pair_geometry_of(i, j, gc, vf, wf);
-      if constexpr (predicts_velocity && Contact::has_torque)
-        set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
-      const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
-      const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
-      const auto& cp = pair_resolved_[mij];
-      History& h = hist(history_, e);
-      auto r = Contact::evaluate(gc, pair, cp, h, dt);
-      fi += r.force;
-      p.force[j] -= r.force;
-      if constexpr (Contact::has_torque) {
-        ti += r.torque_i;
-        p.torque[j] += r.torque_j;
-      }
-      if (track) {
-        work += r.force.dot(vf[i] - vf[j]);
-        if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
-      }
-      if constexpr (thermal) {
-        if (heat) {
-          const double H =
-              Contact::conductance(gc, pair, r.normal, cp, h, dt, length(), cell_radius_pair(e));
-          const double q = H * (p.temperature[j] - p.temperature[i]);
-          const double w = dissipation_heat(gc, r);
-          p.heat_rate[i] += q + w;
-          p.heat_rate[j] += w - q;
-        }
-      }
-    };
-    const auto row_begin = list_.offsets[i], row_end = list_.offsets[i + 1];
-    if constexpr (Contact::indirect) {
-      for (auto e = row_begin; e < row_end; ++e) {
-        const auto j = list_.partners[e];
-        const double rs = p.radius[i] + p.radius[j];
-        if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
-          touching(e, j); // the geometry is made there, once
-          continue;
-        }
-        if constexpr (!Contact::template stateless<D>) history_[e] = History{};
-        if (heat) {
-          const double H = gap_pair_conductance(i, j, e, g);
-          const double q = H * (p.temperature[j] - p.temperature[i]);
-          p.heat_rate[i] += q;
-          p.heat_rate[j] -= q;
-        }
-      }
-    } else {
-      // first a branch-free distance test over a block of the row, then the contact law only for
-      // the pairs that touch; the history of a pair that no longer touches is cleared (written
-      // only if it is not blank already)
-      const V xi = p.position[i];
-      const double ri = p.radius[i];
-      constexpr std::uint32_t block = 32;
-      std::uint32_t hit[block];
-      for (auto b = row_begin; b < row_end; b += block) {
-        const auto b_end = std::min(row_end, b + block);
-        std::uint32_t nhit = 0;
-        for (auto e = b; e < b_end; ++e) {
-          const auto j = list_.partners[e];
-          const double rs = ri + p.radius[j];
-          const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
-          hit[nhit] = e;
-          nhit += t;
-          if constexpr (!Contact::template stateless<D>)
-            if (!t && std::memcmp(static_cast<const void*>(&history_[e]),
-                                  static_cast<const void*>(&blank_history_), sizeof(History)))
-                [[unlikely]]
-              history_[e] = blank_history_;
-        }
-        for (std::uint32_t k = 0; k < nhit; ++k)
-          touching(hit[k], list_.partners[hit[k]]);
-      }
-    }
-    p.force[i] = fi;
-    if constexpr (Contact::has_torque) p.torque[i] = ti;
+    ContactGeometry<D> g;
     for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
       const auto w = list_.walls[e];
       if (!touching_wall(i, w, g, vf, wf)) {
@@ -2149,7 +2118,7 @@ private:
       const auto& pair = var_pairs_ ? wall_pair_cache_[e] : pairs_[miw];
       const auto& cp = pair_resolved_[miw];
       History& h = hist(wall_history_, e);
-      auto r = Contact::evaluate(g, pair, cp, h, dt);
+      auto r = Contact::evaluate(g, pair, cp, h, dt_);
       p.force[i] += r.force;
       if constexpr (Contact::has_torque) {
         p.torque[i] += r.torque_i;
@@ -2157,22 +2126,108 @@ private:
       } else {
         wall_loads_[e] = {r.force, g.point, zero<A>()};
       }
-      if (track) {
-        work += r.force.dot(vf[i] - walls_[w].velocity_at(g.point));
+      if (tracking_) {
+        double work = r.force.dot(vf[i] - walls_[w].velocity_at(g.point));
         if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]);
+        work_rows_[i] += work;
       }
       if constexpr (thermal) {
         if (heat) {
           if (walls_[w].conducts()) {
             const double H =
-                Contact::conductance(g, pair, r.normal, cp, h, dt, length(), cell_radius_wall(e));
+                Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_wall(e));
             p.heat_rate[i] += H * (walls_[w].temperature - p.temperature[i]);
           }
           p.heat_rate[i] += dissipation_heat(g, r);
         }
       }
     }
-    if (track) work_rows_[i] = work;
+  }
+
+  /// The contacts of rows [begin, end). Each row's loads are added to both partners in the
+  /// order of the list (the same order for any number of threads).
+  void contact_rows(long begin, long end, long ahead, long n) {
+    auto& p = particles_;
+    if constexpr (Contact::indirect) {
+      ContactGeometry<D> g;
+      [[maybe_unused]] const bool heat = heat_on_;
+      for (long ii = begin; ii < end; ++ii) {
+        if (ii + ahead < n) prefetch_row(static_cast<std::size_t>(ii + ahead));
+        const auto i = static_cast<std::size_t>(ii);
+        for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+          const auto j = list_.partners[e];
+          const double rs = p.radius[i] + p.radius[j];
+          if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+            pair_contact(e, i, j); // the geometry is made there, once
+            continue;
+          }
+          if constexpr (!Contact::template stateless<D>) history_[e] = History{};
+          if (heat) {
+            const double H = gap_pair_conductance(i, j, e, g);
+            const double q = H * (p.temperature[j] - p.temperature[i]);
+            p.heat_rate[i] += q;
+            p.heat_rate[j] -= q;
+          }
+        }
+        wall_contacts(i);
+      }
+    } else {
+      // a branch-free distance test over the entries of several rows, collecting the touching
+      // pairs; then the contact law for all of them in one loop (its length varies less than that
+      // of a row), then the walls of those rows. The history of a pair that no longer touches is
+      // cleared (written only if it is not blank already).
+      constexpr std::uint32_t capacity = 64;
+      std::uint32_t hit_entry[capacity], hit_row[capacity];
+      std::uint32_t nhit = 0;
+      long first = begin; // rows [first, i) have their pairs collected, their walls pending
+      auto flush = [&](long last) GRAIN_INLINE_LAMBDA {
+        for (std::uint32_t k = 0; k < nhit; ++k)
+          pair_contact(hit_entry[k], hit_row[k], list_.partners[hit_entry[k]]);
+        nhit = 0;
+        for (long r = first; r < last; ++r)
+          wall_contacts(static_cast<std::size_t>(r));
+        first = last;
+      };
+      auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
+                      double ri) GRAIN_INLINE_LAMBDA {
+        for (auto e = b; e < b_end; ++e) {
+          const auto j = list_.partners[e];
+          const double rs = ri + p.radius[j];
+          const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
+          hit_entry[nhit] = e;
+          hit_row[nhit] = i;
+          nhit += t;
+          if constexpr (!Contact::template stateless<D>) {
+            // no branch on the distance test: clearing a stale history is rare
+            const std::uint64_t stale = detail::byte_difference(history_[e], blank_history_) &
+                                        (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
+            if (stale != 0) [[unlikely]]
+              history_[e] = blank_history_;
+          }
+        }
+      };
+      for (long ii = begin; ii < end; ++ii) {
+        if (ii + ahead < n) prefetch_row(static_cast<std::size_t>(ii + ahead));
+        const auto i = static_cast<std::uint32_t>(ii);
+        const auto r0 = list_.offsets[i], r1 = list_.offsets[i + 1];
+        const V xi = p.position[i];
+        const double ri = p.radius[i];
+        if (nhit + (r1 - r0) > capacity) {
+          flush(ii);
+          if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
+            for (auto b = r0; b < r1; b += capacity) {
+              test(b, std::min(r1, b + capacity), i, xi, ri);
+              for (std::uint32_t k = 0; k < nhit; ++k)
+                pair_contact(hit_entry[k], i, list_.partners[hit_entry[k]]);
+              nhit = 0;
+            }
+            continue;
+          }
+        }
+        test(r0, r1, i, xi, ri);
+      }
+      flush(end);
+    }
   }
 
   // ---------------------------------------------------------------- heat
