@@ -232,7 +232,16 @@ echo "## $case_name, N = $n (${size[*]}: NX NY$([ "$dims" = 3 ] && echo ' NZ') N
 echo
 echo "$(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($cpu), 1-minute load average at the start of each run in the table, $load_end at the end"
 echo
-awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" -v rounds="$repeat" '
+# awk: the median of the numbers in the blank-separated list s; their sorted list in sorted_
+awk_median='
+  function median(s,   v, m, a, b, t) {
+    m = split(s, v, " ")
+    for (a = 2; a <= m; ++a) for (b = a; b > 1 && v[b - 1] + 0 > v[b] + 0; --b) { t = v[b]; v[b] = v[b - 1]; v[b - 1] = t }
+    sorted_ = ""
+    for (a = 1; a <= m; ++a) sorted_ = sorted_ (a > 1 ? ", " : "") sprintf("%.3g", v[a])
+    return m % 2 ? v[(m + 1) / 2] : 0.5 * (v[m / 2] + v[m / 2 + 1])
+  }'
+awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" -v rounds="$repeat" "$awk_median"'
   { code[NR] = $1; p[NR] = $2; rate[NR] = $3; rss[NR] = $5; load[NR] = $6; atoms[NR] = $7
     nc[NR] = $8; ke[NR] = $9; rke[NR] = $10; h[NR] = $11; cpu[NR] = $12
     wnc[NR] = $13; wke[NR] = $14; wrke[NR] = $15; wh[NR] = $16; dth[NR] = $17; dtc[NR] = $18
@@ -244,14 +253,6 @@ awk -v n="$n" -v nwarm="$nwarm" -v identical="$bit_identical" -v rounds="$repeat
     if ($1 == "liggghts" && $2 == 1 && !ref) ref = NR }
   function name(c) { return c == "grain" ? "grain" : c == "liggghts" ? "LIGGGHTS" : "LAMMPS" }
   function rel(a, b) { return b == 0 ? "n/a" : sprintf("%+.2f %%", 100 * (a - b) / b) }
-  # median of the numbers in the blank-separated list s; their sorted list in sorted_
-  function median(s,   v, m, a, b, t) {
-    m = split(s, v, " ")
-    for (a = 2; a <= m; ++a) for (b = a; b > 1 && v[b - 1] + 0 > v[b] + 0; --b) { t = v[b]; v[b] = v[b - 1]; v[b - 1] = t }
-    sorted_ = ""
-    for (a = 1; a <= m; ++a) sorted_ = sorted_ (a > 1 ? ", " : "") sprintf("%.3g", v[a])
-    return m % 2 ? v[(m + 1) / 2] : 0.5 * (v[m / 2] + v[m / 2 + 1])
-  }
   # ratios grain[r, a] / other[r, b] of the rounds that have both, as a blank-separated list
   function per_round(which, a, b,   r, s) {
     s = ""
@@ -324,15 +325,13 @@ if [ "$case_name" = thermal3d ] && [ -f "$results-settle3d" ]; then
   # per round: code settle3d-rate thermal3d-rate; the overhead of each round and their median
   awk '{ print $1 "-" $19, $3 }' "$results-settle3d" | sort >"$run_dir/settle3d-rates"
   awk '$2 == 1 { print $1 "-" $19, $3 }' "$results" | sort >"$run_dir/thermal3d-rates"
-  join "$run_dir/settle3d-rates" "$run_dir/thermal3d-rates" | awk '
+  join "$run_dir/settle3d-rates" "$run_dir/thermal3d-rates" | awk "$awk_median"'
     { split($1, c, "-"); o = 100 * ($2 / $3 - 1); list[c[1]] = list[c[1]] sprintf(" %+.1f", o); ++m[c[1]]
-      all[c[1], m[c[1]]] = o; s[c[1]] = $2; t[c[1]] = $3 }
+      all[c[1]] = all[c[1]] " " o; s[c[1]] = $2; t[c[1]] = $3 }
     END {
       for (code in m) {
         k = m[code]
-        for (a = 2; a <= k; ++a) for (b = a; b > 1 && all[code, b - 1] > all[code, b]; --b) {
-          x = all[code, b]; all[code, b] = all[code, b - 1]; all[code, b - 1] = x }
-        med = k % 2 ? all[code, (k + 1) / 2] : 0.5 * (all[code, k / 2] + all[code, k / 2 + 1])
+        med = median(all[code])
         who = code == "grain" ? "grain 1 thread" : "LIGGGHTS 1 rank"
         if (k == 1)
           printf "conduction overhead, %s: settle3d %.3e, thermal3d %.3e particle-steps/s: %+.1f %%\n", who, s[code], t[code], med
