@@ -2180,10 +2180,13 @@ private:
       std::uint32_t hit_entry[capacity], hit_row[capacity];
       std::uint32_t nhit = 0;
       long first = begin; // rows [first, i) have their pairs collected, their walls pending
-      auto flush = [&](long last) GRAIN_INLINE_LAMBDA {
+      auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
         for (std::uint32_t k = 0; k < nhit; ++k)
           pair_contact(hit_entry[k], hit_row[k], list_.partners[hit_entry[k]]);
         nhit = 0;
+      };
+      auto flush = [&](long last) GRAIN_INLINE_LAMBDA {
+        laws();
         for (long r = first; r < last; ++r)
           wall_contacts(static_cast<std::size_t>(r));
         first = last;
@@ -2217,9 +2220,7 @@ private:
           if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
             for (auto b = r0; b < r1; b += capacity) {
               test(b, std::min(r1, b + capacity), i, xi, ri);
-              for (std::uint32_t k = 0; k < nhit; ++k)
-                pair_contact(hit_entry[k], i, list_.partners[hit_entry[k]]);
-              nhit = 0;
+              laws();
             }
             continue;
           }
