@@ -202,14 +202,21 @@ run_peer() { # code (liggghts | lammps) ranks [case, default the compared one]
 echo "case $case_name, N = $n (${size[*]}), $repeat round(s), logs in $run_dir"
 for ((round = 1; round <= repeat; ++round)); do
   [ "$repeat" -gt 1 ] && echo "round $round of $repeat"
-  want grain && { run_grain 1; run_grain 2; }
-  want liggghts && { run_peer liggghts 1; run_peer liggghts 2; }
+  # thermal3d: the same mechanics without conduction (settle3d, one thread / rank) right after
+  # each code's 1-thread thermal3d run, for the overhead of conduction (adjacent runs, so that
+  # the drift of the machine's speed within a round does not enter the ratio)
+  thermal=$([ "$case_name" = thermal3d ] && echo 1 || echo 0)
+  want grain && {
+    run_grain 1
+    [ "$thermal" = 1 ] && run_grain 1 settle3d
+    run_grain 2
+  }
+  want liggghts && {
+    run_peer liggghts 1
+    [ "$thermal" = 1 ] && [ -f "$peers/liggghts-settle3d.in" ] && run_peer liggghts 1 settle3d
+    run_peer liggghts 2
+  }
   want lammps && { run_peer lammps 1; run_peer lammps 2; }
-  if [ "$case_name" = thermal3d ]; then
-    # the same mechanics without conduction, one thread / rank, for the overhead of conduction
-    want grain && run_grain 1 settle3d
-    want liggghts && [ -f "$peers/liggghts-settle3d.in" ] && run_peer liggghts 1 settle3d
-  fi
 done
 round=1
 load_end=$(load1)

@@ -195,9 +195,9 @@ struct Interaction {
   /// `length` is the cylinder length of 2D disks (0 for spheres), `cell_radius` the fluid-cell
   /// radius (infinite when unused).
   template <int D>
-  static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
-                            const NormalResult& n, const Params& p, History<D>& h, double dt,
-                            double length, double cell_radius) {
+  GRAIN_INLINE static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
+                                         const NormalResult& n, const Params& p, History<D>& h,
+                                         double dt, double length, double cell_radius) {
     if constexpr (thermal) {
       const double a = area_model::radius(g, pair, n, p.area);
       const HeatContext c{.contact_radius = a,

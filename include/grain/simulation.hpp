@@ -1014,7 +1014,14 @@ private:
       call_stages<Hook::after_forces>();
     }
     if constexpr (thermal) {
-      if (heats()) integrate_temperature(dt);
+      // with the half kick left pending, the temperatures advance in the same pass (nothing
+      // reads them before it; fixed temperatures are set after the update, so not then)
+      if (heats()) {
+        if (kick_pending_ && cond_.temperatures.empty())
+          heat_pending_ = true;
+        else
+          integrate_temperature(dt);
+      }
     }
     ++step_;
     // time counts whole steps since the last initialisation (no drift from summing dt)
@@ -2041,6 +2048,7 @@ private:
     const auto& p = particles_;
     const auto& vf = force_velocity();
     const auto& wf = force_omega();
+    [[maybe_unused]] const bool heat = heat_on_;
     for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
       const auto j = list_.partners[e];
       GRAIN_PREFETCH(&p.position[j], 0);
@@ -2052,6 +2060,12 @@ private:
         GRAIN_PREFETCH(&p.torque[j], 0);
       }
       GRAIN_PREFETCH(&p.mass[j], 0);
+      if constexpr (thermal) {
+        if (heat) {
+          GRAIN_PREFETCH(&p.temperature[j], 0);
+          GRAIN_PREFETCH(&p.heat_rate[j], 0);
+        }
+      }
     }
   }
 
@@ -2472,6 +2486,10 @@ private:
   }
   /// Applies a half kick left pending (a run interrupted by an exception).
   void settle_kick() {
+    if (heat_pending_) {
+      heat_pending_ = false;
+      integrate_temperature(dt_);
+    }
     if (!kick_pending_) return;
     kick_pending_ = false;
     const bool spins = spins_();
@@ -2499,7 +2517,8 @@ private:
     const bool check = skin_ > 0.0 && snapshot_.size() == p.size();
     const bool kick = kick_pending_;
     kick_pending_ = false;
-    const Fused f{dt, g, ct, cr, spins, orient};
+    const Fused f{dt, g, ct, cr, spins, orient, heat_pending_};
+    heat_pending_ = false;
     // the two flags that change between steps select a loop compiled for them
     const double d2 =
         kick ? (check ? fused_pass<true, true>(n, f) : fused_pass<true, false>(n, f))
@@ -2514,6 +2533,7 @@ private:
     V g;           ///< gravity at the end of the step [m/s^2]
     double ct, cr; ///< global damping [N s/m], [N m s]
     bool spins, orient;
+    bool heat; ///< the last step's temperature update was left to this pass (with its kick)
   };
   /// The fused pass over all n particles, with the last step's second half kick if Kick, and the
   /// displacement since the last neighbour-list build measured if Check (a snapshot exists);
@@ -2552,7 +2572,11 @@ private:
     } else {
       p.torque[i] = zero<A>();
     }
-    if constexpr (thermal) p.heat_rate[i] = 0.0;
+    if constexpr (thermal) {
+      if constexpr (Kick)
+        if (f.heat) p.temperature[i] += f.dt * p.heat_rate[i] * p.inv_heat_capacity[i];
+      p.heat_rate[i] = 0.0;
+    }
     if constexpr (Check)
       return (p.position[i] - snapshot_[i]).squaredNorm();
     else
@@ -2810,6 +2834,7 @@ private:
   NeighborList list_;
   std::vector<History> history_, wall_history_;
   bool kick_pending_ = false; ///< the last step's second half kick is left to the next step
+  bool heat_pending_ = false; ///< the last step's temperature update is left to the next step
   History blank_history_{};   ///< a value-initialised history (what a pair without contact has)
   std::vector<V> snapshot_;
   std::vector<V> vf_; ///< velocities seen by the forces (velocity Verlet)

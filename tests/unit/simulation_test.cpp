@@ -13,7 +13,15 @@ using namespace grain;
 namespace {
 using Contact3 = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider>;
 using Contact2 = Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider>;
-const Material soft{.density = 2500, .young = 1e7, .poisson = 0.3, .restitution = 0.5, .friction = 0.5};
+using Contact3Heat = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider, rolling::None,
+                                 conduction::BatchelorOBrien>;
+const Material soft{.density = 2500,
+                    .young = 1e7,
+                    .poisson = 0.3,
+                    .restitution = 0.5,
+                    .friction = 0.5,
+                    .conductivity = 1.0,
+                    .heat_capacity = 840.0};
 
 template <class Sim>
 void settle_box(Sim& sim, int n, unsigned seed) {
@@ -28,7 +36,15 @@ void settle_box(Sim& sim, int n, unsigned seed) {
       x[d] = L * (0.05 + 0.9 * u(rng));
       v[d] = 0.1 * (2 * u(rng) - 1);
     }
-    sim.add_particle({.position = x, .radius = 4e-4 + 2e-4 * u(rng), .material = m, .velocity = v});
+    const double r = 4e-4 + 2e-4 * u(rng);
+    if constexpr (Sim::thermal)
+      sim.add_particle({.position = x,
+                        .radius = r,
+                        .material = m,
+                        .velocity = v,
+                        .temperature = 300.0 + 100.0 * u(rng)});
+    else
+      sim.add_particle({.position = x, .radius = r, .material = m, .velocity = v});
   }
   if constexpr (D == 2) {
     sim.add_wall(walls::Segment{Vec2(0, 0), Vec2(L, 0)}, {.material = m});
@@ -57,6 +73,10 @@ std::vector<double> state_bits(const Sim& sim) {
       out.push_back(p.omega[i]);
     else
       for (int d = 0; d < 3; ++d) out.push_back(p.omega[i][d]);
+    if constexpr (Sim::thermal) {
+      out.push_back(p.temperature[i]);
+      out.push_back(p.heat_rate[i]);
+    }
   }
   return out;
 }
@@ -87,13 +107,14 @@ TEST_CASE("global damping decays the velocity exponentially") {
   CHECK(p.omega[0] == grain::test::approx(10.0 * std::exp(-1e-9 * sim.time() / p.inertia[0])).epsilon(1e-6));
 }
 
-// A run of n steps without observers leaves the second half kick of each step but the last to
-// the next step's first pass over the particles: the same arithmetic, so the state must equal n
-// single steps bit for bit; so must the state after an exception inside the run (here a damping
-// that turns negative at t = 2.11e-4 s, which step 106 evaluates at its end, 2.12e-4 s).
-template <class Integrator>
+// A run of n steps without observers leaves the second half kick of each step but the last (and
+// with conduction, the temperature update) to the next step's first pass over the particles: the
+// same arithmetic, so the state must equal n single steps bit for bit; so must the state after
+// an exception inside the run (here a damping that turns negative at t = 2.11e-4 s, which step
+// 106 evaluates at its end, 2.12e-4 s).
+template <class Integrator, class Contact = Contact3>
 void check_runs_equal_single_steps() {
-  using Sim = Simulation<Sphere, search::CellList, Contact3, Integrator>;
+  using Sim = Simulation<Sphere, search::CellList, Contact, Integrator>;
   auto make = [] {
     Sim sim({.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
     settle_box(sim, 500, 5);
@@ -128,6 +149,7 @@ void check_runs_equal_single_steps() {
 TEST_CASE("a run of n steps equals n single steps bit for bit") {
   check_runs_equal_single_steps<integrate::VelocityVerlet>();
   check_runs_equal_single_steps<integrate::VelocityVerletHalfStep>();
+  check_runs_equal_single_steps<integrate::VelocityVerletHalfStep, Contact3Heat>();
 }
 
 #ifdef _OPENMP

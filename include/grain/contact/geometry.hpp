@@ -55,7 +55,7 @@ struct ContactGeometry {
 namespace detail {
 
 /// Lens half-chord of two circles of radii r1, r2 at centre distance d.
-inline double lens_radius(double r1, double r2, double d) {
+GRAIN_INLINE double lens_radius(double r1, double r2, double d) {
   const double x = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
   return std::sqrt(std::abs(r1 * r1 - x * x));
 }
@@ -122,7 +122,7 @@ GRAIN_INLINE void wall_geometry(ContactGeometry<D>& g, const Wall<D>& wall,
 /// The half chord of the lens in which the undeformed bodies of a touching contact intersect [m]
 /// (flat wall: sqrt(R_i^2 - d^2); circle wall: the lens of the two circles).
 template <int D>
-inline double lens_contact_radius(const ContactGeometry<D>& g) {
+GRAIN_INLINE double lens_contact_radius(const ContactGeometry<D>& g) {
   const double r = g.radius_i;
   if (!g.wall) return detail::lens_radius(r, g.radius_j, g.distance);
   if (std::isinf(g.radius_j)) {
