@@ -1950,10 +1950,36 @@ private:
     // partners close by (a 2D row of cells) are in the caches already
     const long ahead =
         static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
+    // the chunks of a phase go to the threads in contiguous runs of about equal work (entries
+    // and rows), in particle order: a thread works on about the particles it has in the static
+    // passes over the particles, whose data stay in its caches (on some machines the two cores
+    // do not share a cache, and chunks handed out as threads became free cost the next pass as
+    // much as they saved)
+    auto work = [&](long c) {
+      const auto b = static_cast<std::size_t>(c * chunk);
+      const auto e = static_cast<std::size_t>(std::min(n, (c + 1) * chunk));
+      return static_cast<double>(list_.offsets[e] - list_.offsets[b]) +
+             static_cast<double>(list_.wall_offsets[e] - list_.wall_offsets[b]) +
+             static_cast<double>(e - b);
+    };
     for (int phase = 0; phase < 2; ++phase) {
-#pragma omp parallel for schedule(dynamic, 1) if (n >= parallel_threshold)
-      for (long c = phase; c < nchunks; c += 2) {
-        contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, n);
+#pragma omp parallel if (n >= parallel_threshold)
+      {
+        long thread = 0, threads = 1;
+#ifdef _OPENMP
+        thread = omp_get_thread_num();
+        threads = omp_get_num_threads();
+#endif
+        double total = 0.0, before = 0.0;
+        for (long c = phase; c < nchunks; c += 2)
+          total += work(c);
+        for (long c = phase; c < nchunks; c += 2) {
+          const double w = work(c);
+          const auto owner = std::min(threads - 1, static_cast<long>(static_cast<double>(threads) *
+                                                                     (before + 0.5 * w) / total));
+          before += w;
+          if (owner == thread) contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, n);
+        }
       }
     }
     wall_loads_pending_ = !walls_.empty();
