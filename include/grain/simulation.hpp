@@ -2405,13 +2405,17 @@ private:
     }
   }
 
-  /// Forward Euler: T += dt Q / C.
+  /// Forward Euler for particle i: T += dt Q / C (also done in the fused pass).
+  GRAIN_INLINE void temperature_step(std::size_t i, double dt) {
+    auto& p = particles_;
+    p.temperature[i] += dt * p.heat_rate[i] * p.inv_heat_capacity[i];
+  }
+  /// Forward Euler for every particle.
   void integrate_temperature(double dt) {
     if constexpr (thermal) {
-      auto& p = particles_;
-      const long n = static_cast<long>(p.size());
+      const long n = static_cast<long>(particles_.size());
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) p.temperature[i] += dt * p.heat_rate[i] * p.inv_heat_capacity[i];
+      for (long i = 0; i < n; ++i) temperature_step(static_cast<std::size_t>(i), dt);
     }
   }
 
@@ -2510,7 +2514,8 @@ private:
     else
       return false;
   }
-  /// Applies a half kick left pending (a run interrupted by an exception).
+  /// Applies a temperature update and a half kick left pending (a run interrupted by an
+  /// exception, a re-initialisation, a step that cannot use the fused pass).
   void settle_kick() {
     if (heat_pending_) {
       heat_pending_ = false;
@@ -2600,7 +2605,7 @@ private:
     }
     if constexpr (thermal) {
       if constexpr (Kick)
-        if (f.heat) p.temperature[i] += f.dt * p.heat_rate[i] * p.inv_heat_capacity[i];
+        if (f.heat) temperature_step(i, f.dt);
       p.heat_rate[i] = 0.0;
     }
     if constexpr (Check)
