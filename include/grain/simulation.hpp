@@ -262,6 +262,10 @@ public:
   static constexpr long parallel_threshold = 1000;
   /// The contact loop requests the partners' data of the row this many rows ahead...
   static constexpr long prefetch_rows = 16;
+  /// ... except the partners within prefetch_near rows of their row (the cell order puts a row's
+  /// neighbours in its own and the adjacent cells along the fastest axis there: their data come
+  /// with the rows'); the row's own data are requested 2 x prefetch_rows rows ahead
+  static constexpr std::size_t prefetch_near = 64;
   /// ... if the particles of one list span (largest j - i) hold more than prefetch_span_bytes
   /// of the data a row reads or writes per partner (row_bytes [B]). Measured (docs/performance.md):
   /// settle3d N = 1e5 (680 kB) 1.16 x faster, N = 1e6 1.17 x; settle3d N = 1e4 (170 kB) and
@@ -1946,8 +1950,9 @@ private:
     const long span = static_cast<long>(list_.max_span);
     const long chunk = std::max({span, (n + 63) / 64, 1L});
     const long nchunks = (n + chunk - 1) / chunk;
-    // partners far ahead in memory (a layer of cells in 3D) are requested some rows in advance;
-    // partners close by (a 2D row of cells) are in the caches already
+    // partners far ahead in memory (a layer of cells in 3D) are requested some rows in advance,
+    // and the rows' own data further ahead; with partners close by (a 2D row of cells) all of it
+    // is in the caches already
     const long ahead =
         static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
     // the chunks of a phase go to the threads in contiguous runs of about equal work (entries
@@ -2071,26 +2076,42 @@ private:
   /// met for the first time in a step (those a layer of cells ahead) overlap with the work of the
   /// rows before it. Read intent only: a partner may belong to another thread's chunk.
   GRAIN_INLINE void prefetch_row(std::size_t i) const {
-    const auto& p = particles_;
-    const auto& vf = force_velocity();
-    const auto& wf = force_omega();
-    [[maybe_unused]] const bool heat = heat_on_;
     for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
       const auto j = list_.partners[e];
-      GRAIN_PREFETCH(&p.position[j], 0);
-      GRAIN_PREFETCH(&p.radius[j], 0);
-      GRAIN_PREFETCH(&vf[j], 0);
-      GRAIN_PREFETCH(&p.force[j], 0);
-      if constexpr (Contact::has_torque) {
-        GRAIN_PREFETCH(&wf[j], 0);
-        GRAIN_PREFETCH(&p.torque[j], 0);
-      }
-      GRAIN_PREFETCH(&p.mass[j], 0);
-      if constexpr (thermal) {
-        if (heat) {
-          GRAIN_PREFETCH(&p.temperature[j], 0);
-          GRAIN_PREFETCH(&p.heat_rate[j], 0);
-        }
+      if (j - i > prefetch_near) prefetch_particle<0>(j);
+    }
+  }
+
+  /// Requests the data of row i itself: its particle's state and loads, the start of its list
+  /// entries and histories. These are sequential streams, but a row reads a dozen of them at
+  /// once, more than the hardware prefetchers follow: at N = 1e6 (from memory) they stalled the
+  /// rows (docs/performance.md).
+  GRAIN_INLINE void prefetch_own(std::size_t i) const {
+    prefetch_particle<1>(i);
+    const auto e = list_.offsets[i];
+    GRAIN_PREFETCH(&list_.partners[e], 0);
+    if constexpr (!Contact::template stateless<D>) GRAIN_PREFETCH(&history_[e], 1);
+  }
+
+  /// Requests what a contact reads of particle k, with write intent (Write = 1) for the loads it
+  /// adds if the requesting thread owns k (a partner may belong to another thread's chunk).
+  template <int Write>
+  GRAIN_INLINE void prefetch_particle(std::size_t k) const {
+    const auto& p = particles_;
+    GRAIN_PREFETCH(&p.position[k], 0);
+    GRAIN_PREFETCH(&p.material[k], 0);
+    GRAIN_PREFETCH(&p.radius[k], 0);
+    GRAIN_PREFETCH(&force_velocity()[k], 0);
+    GRAIN_PREFETCH(&p.force[k], Write);
+    if constexpr (Contact::has_torque) {
+      GRAIN_PREFETCH(&force_omega()[k], 0);
+      GRAIN_PREFETCH(&p.torque[k], Write);
+    }
+    GRAIN_PREFETCH(&p.mass[k], 0);
+    if constexpr (thermal) {
+      if (heat_on_) {
+        GRAIN_PREFETCH(&p.temperature[k], 0);
+        GRAIN_PREFETCH(&p.heat_rate[k], Write);
       }
     }
   }
@@ -2192,7 +2213,10 @@ private:
       ContactGeometry<D> g;
       [[maybe_unused]] const bool heat = heat_on_;
       for (long ii = begin; ii < end; ++ii) {
-        if (ii + ahead < n) prefetch_row(static_cast<std::size_t>(ii + ahead));
+        if (ii + ahead < n) {
+          prefetch_row(static_cast<std::size_t>(ii + ahead));
+          if (ii + 2 * ahead < n) prefetch_own(static_cast<std::size_t>(ii + 2 * ahead));
+        }
         const auto i = static_cast<std::size_t>(ii);
         for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
           const auto j = list_.partners[e];
@@ -2250,7 +2274,10 @@ private:
         }
       };
       for (long ii = begin; ii < end; ++ii) {
-        if (ii + ahead < n) prefetch_row(static_cast<std::size_t>(ii + ahead));
+        if (ii + ahead < n) {
+          prefetch_row(static_cast<std::size_t>(ii + ahead));
+          if (ii + 2 * ahead < n) prefetch_own(static_cast<std::size_t>(ii + 2 * ahead));
+        }
         const auto i = static_cast<std::uint32_t>(ii);
         const auto r0 = list_.offsets[i], r1 = list_.offsets[i + 1];
         const V xi = p.position[i];
