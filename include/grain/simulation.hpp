@@ -2088,9 +2088,9 @@ private:
   /// rows (docs/performance.md).
   GRAIN_INLINE void prefetch_own(std::size_t i) const {
     prefetch_particle<1>(i);
-    const auto e = list_.offsets[i];
-    GRAIN_PREFETCH(&list_.partners[e], 0);
-    if constexpr (!Contact::template stateless<D>) GRAIN_PREFETCH(&history_[e], 1);
+    const auto e = list_.offsets[i]; // may be the end of the list (no entries left)
+    GRAIN_PREFETCH(list_.partners.data() + e, 0);
+    if constexpr (!Contact::template stateless<D>) GRAIN_PREFETCH(history_.data() + e, 1);
   }
 
   /// Requests what a contact reads of particle k, with write intent (Write = 1) for the loads it
