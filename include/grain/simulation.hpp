@@ -2093,8 +2093,9 @@ private:
     if constexpr (!Contact::template stateless<D>) GRAIN_PREFETCH(history_.data() + e, 1);
   }
 
-  /// Requests what a contact reads of particle k, with write intent (Write = 1) for the loads it
-  /// adds if the requesting thread owns k (a partner may belong to another thread's chunk).
+  /// Requests what a contact reads of particle k, with write intent (Write = 1, a row's own
+  /// particle) for the loads it adds. A request changes no data: near a chunk's end the row
+  /// ahead may be another thread's, which costs at most a cache line moved between cores.
   template <int Write>
   GRAIN_INLINE void prefetch_particle(std::size_t k) const {
     const auto& p = particles_;
