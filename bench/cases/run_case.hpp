@@ -71,6 +71,7 @@ int run_case(Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi, long nwarm,
   std::printf("particle_steps_per_s %.6g\n",
               static_cast<double>(sim.size()) * static_cast<double>(nrun) / seconds);
   std::printf("neighbor_rebuilds %ld\n", sim.counters().rebuilds - rebuilds0);
+  std::printf("list_pairs %zu\n", sim.neighbor_list().partners.size());
   print_figures("", f);
   extra(sim, "");
   std::printf("particles_outside %zu\n", f.outside);

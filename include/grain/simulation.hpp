@@ -31,8 +31,9 @@
 ///
 /// Force accumulation is race-free and deterministic: rows of the half list are cut into chunks
 /// whose length depends only on N and on the largest index distance of a pair, never on the
-/// number of threads; even chunks run in parallel, then odd ones, so each particle receives its
-/// contributions in a fixed order and the results are bit-identical for any thread count.
+/// number of threads; an odd chunk runs only after the even chunks on both sides, so each
+/// particle receives its contributions in a fixed order and the results are bit-identical for
+/// any thread count.
 
 #include <grain/conditions/conditions.hpp>
 #include <grain/conditions/regions.hpp>
@@ -55,6 +56,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -65,6 +67,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -93,6 +96,13 @@ GRAIN_INLINE std::uint64_t byte_difference(const T& a, const T& b) {
   for (; k < sizeof(T); ++k)
     diff |= static_cast<std::uint64_t>(x[k] ^ y[k]);
   return diff;
+}
+
+/// Waits until another thread has set `flag` (release) to non-zero; its writes before are then
+/// visible. Spins briefly, then yields (more threads than cores).
+inline void wait_for(const std::atomic<int>& flag) {
+  for (int k = 0; flag.load(std::memory_order_acquire) == 0; ++k)
+    if (k > 64) std::this_thread::yield();
 }
 } // namespace detail
 
@@ -262,10 +272,10 @@ public:
   static constexpr long parallel_threshold = 1000;
   /// The contact loop requests the partners' data of the row this many rows ahead...
   static constexpr long prefetch_rows = 16;
-  /// ... except the partners within prefetch_near rows of their row (the cell order puts a row's
-  /// neighbours in its own and the adjacent cells along the fastest axis there: their data come
-  /// with the rows'); the row's own data are requested 2 x prefetch_rows rows ahead
-  static constexpr std::size_t prefetch_near = 64;
+  /// ... except the partners within prefetch_near rows of their row: the row's own data are
+  /// requested 2 x prefetch_rows rows ahead, so those of a partner that close were requested
+  /// as its own row's already (with 64 rows, partners 33 to 64 rows ahead were missed)
+  static constexpr std::size_t prefetch_near = 2 * prefetch_rows;
   /// ... if the particles of one list span (largest j - i) hold more than prefetch_span_bytes
   /// of the data a row reads or writes per partner (row_bytes [B]). Measured (docs/performance.md):
   /// settle3d N = 1e5 (680 kB) 1.16 x faster, N = 1e6 1.17 x; settle3d N = 1e4 (170 kB) and
@@ -1955,11 +1965,18 @@ private:
     // is in the caches already
     const long ahead =
         static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
-    // the chunks of a phase go to the threads in contiguous runs of about equal work (entries
-    // and rows), in particle order: a thread works on about the particles it has in the static
-    // passes over the particles, whose data stay in its caches (on some machines the two cores
-    // do not share a cache, and chunks handed out as threads became free cost the next pass as
-    // much as they saved)
+    // A row adds loads to its own particle and to partners at most one chunk ahead, so the rows
+    // of chunk c write to chunks c and c + 1 only. An even chunk never waits; an odd chunk runs
+    // once the even chunks on both sides are done. Every particle thus receives
+    // the loads of the even chunk's rows before those of the odd chunk's, whatever the number of
+    // threads (the same bits), and no two chunks that write the same particle run at once.
+    // The chunks go to the threads in contiguous runs of about equal work (entries and rows), in
+    // particle order: a thread works on about the particles it has in the static passes over the
+    // particles, whose data stay in its caches (on some machines the two cores do not share a
+    // cache). A thread runs its chunks in the order 0, 2, 1, 4, 3, ...: the odd chunk right after
+    // the even one above it, while the data of both are still in the caches (at N = 1e6 the data
+    // of a step do not fit, and running all even chunks before all odd ones read much of them
+    // twice).
     auto work = [&](long c) {
       const auto b = static_cast<std::size_t>(c * chunk);
       const auto e = static_cast<std::size_t>(std::min(n, (c + 1) * chunk));
@@ -1967,25 +1984,46 @@ private:
              static_cast<double>(list_.wall_offsets[e] - list_.wall_offsets[b]) +
              static_cast<double>(e - b);
     };
-    for (int phase = 0; phase < 2; ++phase) {
+    std::array<std::atomic<int>, 64> done{}; // chunk >= n / 64: at most 64 chunks
+    double total = 0.0;
+    for (long c = 0; c < nchunks; ++c)
+      total += work(c);
 #pragma omp parallel if (n >= parallel_threshold)
-      {
-        long thread = 0, threads = 1;
+    {
+      long thread = 0, threads = 1;
 #ifdef _OPENMP
-        thread = omp_get_thread_num();
-        threads = omp_get_num_threads();
+      thread = omp_get_thread_num();
+      threads = omp_get_num_threads();
 #endif
-        double total = 0.0, before = 0.0;
-        for (long c = phase; c < nchunks; c += 2)
-          total += work(c);
-        for (long c = phase; c < nchunks; c += 2) {
-          const double w = work(c);
-          const auto owner = std::min(threads - 1, static_cast<long>(static_cast<double>(threads) *
-                                                                     (before + 0.5 * w) / total));
-          before += w;
-          if (owner == thread) contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, n);
+      // this thread's chunks [a, b)
+      long a = nchunks, b = nchunks;
+      double before = 0.0;
+      for (long c = 0; c < nchunks; ++c) {
+        const double w = work(c);
+        const auto owner = std::min(threads - 1, static_cast<long>(static_cast<double>(threads) *
+                                                                   (before + 0.5 * w) / total));
+        before += w;
+        if (owner == thread) {
+          a = std::min(a, c);
+          b = c + 1;
         }
       }
+      auto run = [&](long c) {
+        if (c % 2 == 1) {
+          detail::wait_for(done[static_cast<std::size_t>(c - 1)]);
+          if (c + 1 < nchunks) detail::wait_for(done[static_cast<std::size_t>(c + 1)]);
+        }
+        contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, n);
+        done[static_cast<std::size_t>(c)].store(1, std::memory_order_release);
+      };
+      // an odd first chunk waits for the previous thread's last one: it goes last
+      const long deferred = a % 2 == 1 ? a : -1;
+      for (long c = a + a % 2; c < b; c += 2) {
+        run(c);
+        if (c - 1 >= a && c - 1 != deferred) run(c - 1);
+      }
+      if (b - 1 >= a && (b - 1) % 2 == 1 && b - 1 != deferred) run(b - 1);
+      if (deferred >= 0) run(deferred);
     }
     wall_loads_pending_ = !walls_.empty();
     const auto loads = global_loads(t);
@@ -2091,6 +2129,10 @@ private:
     const auto e = list_.offsets[i]; // may be the end of the list (no entries left)
     GRAIN_PREFETCH(list_.partners.data() + e, 0);
     if constexpr (!Contact::template stateless<D>) GRAIN_PREFETCH(history_.data() + e, 1);
+    // the rows' offsets into the list (read here, further ahead) and into the wall entries
+    GRAIN_PREFETCH(list_.offsets.data() + std::min(i + 2 * prefetch_rows, list_.offsets.size() - 1),
+                   0);
+    GRAIN_PREFETCH(list_.wall_offsets.data() + i, 0);
   }
 
   /// Requests what a contact reads of particle k, with write intent (Write = 1, a row's own
