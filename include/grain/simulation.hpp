@@ -101,8 +101,12 @@ GRAIN_INLINE std::uint64_t byte_difference(const T& a, const T& b) {
 /// Waits until another thread has set `flag` (release) to non-zero; its writes before are then
 /// visible. Spins briefly, then yields (more threads than cores).
 inline void wait_for(const std::atomic<int>& flag) {
-  for (int k = 0; flag.load(std::memory_order_acquire) == 0; ++k)
-    if (k > 64) std::this_thread::yield();
+  for (int spins = 0; flag.load(std::memory_order_acquire) == 0;) {
+    if (spins < 64)
+      ++spins;
+    else
+      std::this_thread::yield();
+  }
 }
 } // namespace detail
 
@@ -1967,9 +1971,9 @@ private:
         static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
     // A row adds loads to its own particle and to partners at most one chunk ahead, so the rows
     // of chunk c write to chunks c and c + 1 only. An even chunk never waits; an odd chunk runs
-    // once the even chunks on both sides are done. Every particle thus receives
-    // the loads of the even chunk's rows before those of the odd chunk's, whatever the number of
-    // threads (the same bits), and no two chunks that write the same particle run at once.
+    // once the even chunks on both sides are done. Every particle thus receives the loads of the
+    // even chunk's rows before those of the odd chunk's, whatever the number of threads (the
+    // same bits), and no two chunks that write the same particle run at once.
     // The chunks go to the threads in contiguous runs of about equal work (entries and rows), in
     // particle order: a thread works on about the particles it has in the static passes over the
     // particles, whose data stay in its caches (on some machines the two cores do not share a
