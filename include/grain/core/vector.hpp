@@ -70,10 +70,10 @@ inline double cross(const Vec2& r, const Vec2& f) { return r.x() * f.y() - r.y()
 /// Euclidean norm of an angular quantity.
 inline double norm(double w) { return std::abs(w); }
 inline double norm(const Vec3& w) { return w.norm(); }
-/// Squared norm of an angular quantity.
 /// Dot product of two angular quantities (scalars in 2D, 3-vectors in 3D).
 inline double dot(double a, double b) { return a * b; }
 inline double dot(const Vec3& a, const Vec3& b) { return a.dot(b); }
+/// Squared norm of an angular quantity.
 inline double squared_norm(double w) { return w * w; }
 inline double squared_norm(const Vec3& w) { return w.squaredNorm(); }
 
