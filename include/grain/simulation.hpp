@@ -2139,6 +2139,15 @@ private:
     GRAIN_PREFETCH(list_.wall_offsets.data() + i, 0);
   }
 
+  /// The requests made at row ii: the partners' data of the row `ahead` rows further and the
+  /// own data of the row 2 x `ahead` rows further (none past the last row, n).
+  GRAIN_INLINE void request_ahead(long ii, long ahead, long n) const {
+    if (ii + ahead < n) {
+      prefetch_row(static_cast<std::size_t>(ii + ahead));
+      if (ii + 2 * ahead < n) prefetch_own(static_cast<std::size_t>(ii + 2 * ahead));
+    }
+  }
+
   /// Requests what a contact reads of particle k, with write intent (Write = 1, a row's own
   /// particle) for the loads it adds. A request changes no data: near a chunk's end the row
   /// ahead may be another thread's, which costs at most a cache line moved between cores.
@@ -2260,10 +2269,7 @@ private:
       ContactGeometry<D> g;
       [[maybe_unused]] const bool heat = heat_on_;
       for (long ii = begin; ii < end; ++ii) {
-        if (ii + ahead < n) {
-          prefetch_row(static_cast<std::size_t>(ii + ahead));
-          if (ii + 2 * ahead < n) prefetch_own(static_cast<std::size_t>(ii + 2 * ahead));
-        }
+        request_ahead(ii, ahead, n);
         const auto i = static_cast<std::size_t>(ii);
         for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
           const auto j = list_.partners[e];
@@ -2321,10 +2327,7 @@ private:
         }
       };
       for (long ii = begin; ii < end; ++ii) {
-        if (ii + ahead < n) {
-          prefetch_row(static_cast<std::size_t>(ii + ahead));
-          if (ii + 2 * ahead < n) prefetch_own(static_cast<std::size_t>(ii + 2 * ahead));
-        }
+        request_ahead(ii, ahead, n);
         const auto i = static_cast<std::uint32_t>(ii);
         const auto r0 = list_.offsets[i], r1 = list_.offsets[i + 1];
         const V xi = p.position[i];
