@@ -1,8 +1,9 @@
 // Wall proximity, contact geometry and wall motion.
-#include <grain/grain.hpp>
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../errors.hpp"
 #include <cmath>
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
 #include <numbers>
 
 using namespace grain;
@@ -115,6 +116,70 @@ TEST_CASE("wall motion: translation, rotation about the pivot, surface velocity"
   auto plane = make<3>(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.velocity = Vec3(0, 0, 0.1)});
   plane.move(2.0);
   CHECK(plane.proximity(Vec3(0, 0, 1)).distance == grain::test::approx(0.8));
+}
+
+TEST_CASE(
+    "plane turning about a distant pivot: the displacement bound covers every point within reach") {
+  // the plane's point sits 100 m from the pivot; the rotation moves it by -omega x 100 m along z
+  // and the translation brings it back, so the point stays where it was while the plane tilts:
+  // at 0.5 m above the pivot the distance changes by 100 m x 1e-4 rad = 0.01 m
+  const double om = 1e-3;
+  auto plane =
+      make<3>(walls::Plane{Vec3(100, 0, 0), Vec3::UnitZ()}, {.velocity = Vec3(0, 0, 100 * om),
+                                                             .omega = Vec3(0, om, 0),
+                                                             .has_pivot = true,
+                                                             .pivot = Vec3::Zero()});
+  const double reach = 1.0;
+  std::vector<Vec3> xs;
+  for (int i = 0; i < 50; ++i) { // points within reach of the pivot, inside and on the sphere
+    const double a = 0.7 * i, b = 1.3 * i;
+    const double r = reach * (i % 5 + 1) / 5.0;
+    xs.emplace_back(r * std::sin(a) * std::cos(b), r * std::sin(a) * std::sin(b), r * std::cos(a));
+  }
+  std::vector<double> d0;
+  for (const auto& x : xs)
+    d0.push_back(plane.proximity(x).distance);
+  for (int k = 0; k < 10; ++k)
+    plane.move(1e-2);
+  CHECK((std::get<walls::Plane>(plane.geometry).point - Vec3(100, 0, 0)).norm() < 1e-6);
+  const double bound = plane.displacement_since_snapshot(reach);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    largest = std::max(largest, std::abs(plane.proximity(xs[i]).distance - d0[i]));
+  CHECK(largest == grain::test::approx(0.01).epsilon(0.02)); // the tilt over 100 m dominates
+  CHECK(bound >= largest);
+  CHECK(bound < 1.05 * largest); // and the bound stays tight: 0.01 x (1 + reach / 100 m)
+}
+
+TEST_CASE("wall input: a non-finite pivot, a temperature below 0 K") {
+  using grain::test::error_of;
+  using grain::test::has;
+  auto w = make<3>(walls::Plane{Vec3::Zero(), Vec3::UnitZ()},
+                   {.name = "lid", .has_pivot = true, .pivot = Vec3(std::nan(""), 0, 0)});
+  const auto e = error_of([&] { w.validate(); });
+  CHECK(has(e, "Wall 'lid'"));
+  CHECK(has(e, "pivot"));
+
+  // a table with a value below 0 K is rejected before the run
+  auto hot =
+      make<2>(walls::Segment{Vec2(0, 0), Vec2(1, 0)},
+              {.name = "heater", .temperature = TimeFunction::table({{0.0, 300.0}, {1.0, -50.0}})});
+  const auto t = error_of([&] { hot.validate(); });
+  CHECK(has(t, "Wall 'heater'"));
+  CHECK(has(t, "-50"));
+  CHECK(has(t, "[0, inf) K"));
+
+  // a ramp that passes 0 K is accepted at t = 0 and stopped where it goes below
+  auto ramp = make<2>(walls::Segment{Vec2(0, 0), Vec2(1, 0)},
+                      {.name = "cooler", .temperature = TimeFunction::linear(300.0, -100.0)});
+  CHECK(error_of([&] { ramp.validate(); }).empty());
+  ramp.update_temperature(2.0);
+  CHECK(ramp.temperature == grain::test::approx(100.0));
+  const auto r = error_of([&] { ramp.update_temperature(4.0); });
+  CHECK(has(r, "Wall 'cooler'"));
+  CHECK(has(r, "t = 4"));
+  CHECK(has(r, "-100"));
+  CHECK(ramp.temperature == grain::test::approx(100.0)); // the last valid value is kept
 }
 
 TEST_CASE("a particle turning with a rotating wall has no relative rotation") {

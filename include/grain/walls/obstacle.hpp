@@ -181,10 +181,7 @@ Obstacle add_obstacle(Sim& sim, const walls::TriangleMesh& mesh,
                     ("triangle " + std::to_string(f) + " material").c_str(), options.materials[f],
                     "[0, " + std::to_string(materials) + ") (indices returned by add_material)");
   const double t = sim.time();
-  if (options.temperature) {
-    const double t0 = options.temperature->value(0.0);
-    detail::require(std::isfinite(t0) && t0 >= 0.0, obj, "temperature", t0, "[0, inf) K");
-  }
+  if (options.temperature) detail::require_wall_temperature(obj, *options.temperature);
 
   Obstacle ob;
   ob.name = options.name;

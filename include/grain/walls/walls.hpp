@@ -84,6 +84,19 @@ struct WallOptions {
   std::optional<TimeFunction> temperature{};
 };
 
+namespace detail {
+/// Requires a wall temperature function to be a temperature: finite and at least 0 K at t = 0
+/// and at every point of a table (a ramp or an oscillation is checked where it is evaluated,
+/// Wall::update_temperature).
+inline void require_wall_temperature(const std::string& obj, const TimeFunction& f) {
+  const double t0 = f.value(0.0);
+  require(std::isfinite(t0) && t0 >= 0.0, obj, "temperature", t0, "[0, inf) K");
+  if (f.kind() == TimeFunction::Kind::table)
+    for (double y : f.table_ptr()->y())
+      require(std::isfinite(y) && y >= 0.0, obj, "temperature", y, "[0, inf) K (table value)");
+}
+} // namespace detail
+
 template <int D>
 using WallGeometry = std::conditional_t<D == 2, std::variant<walls::Segment, walls::Circle>,
                                         std::variant<walls::Plane, walls::Triangle>>;
@@ -179,11 +192,19 @@ struct Wall {
   /// True if heat crosses the wall (it has a temperature).
   bool conducts() const { return options.temperature.has_value(); }
 
-  /// Sets the current temperature at time t [s] (kept while the function is inactive).
+  /// Sets the current temperature at time t [s] (kept while the function is inactive); throws
+  /// InputError if the function gives a value below 0 K or not finite.
   void update_temperature(double t) {
     if (!options.temperature) return;
     const TimeFunction& f = *options.temperature;
-    if (f.active(t) || std::isnan(temperature)) temperature = f.value(t);
+    if (f.active(t) || std::isnan(temperature)) {
+      const double T = f.value(t);
+      if (!(std::isfinite(T) && T >= 0.0))
+        detail::require(false, "Wall '" + options.name + "'",
+                        ("temperature at t = " + detail::to_text(t) + " s").c_str(), T,
+                        "[0, inf) K");
+      temperature = T;
+    }
   }
 
   static constexpr double inf = std::numeric_limits<double>::infinity();
@@ -254,7 +275,9 @@ struct Wall {
   }
 
   /// Upper bound of how far any point of the wall surface that lies within `reach` [m] of the
-  /// pivot has moved since the last snapshot.
+  /// pivot has moved since the last snapshot. For a plane, the distance from a point x changes
+  /// by (x - p0).(n - n0) - (p - p0).n under a rigid motion (p0, n0 the point and normal at the
+  /// snapshot), and |x - p0| <= reach + |p - pivot| (the pivot moves with the plane).
   double displacement_since_snapshot(double reach) const {
     return std::visit(
         [&](const auto& g) -> double {
@@ -265,7 +288,8 @@ struct Wall {
           else if constexpr (std::is_same_v<G, walls::Circle>)
             return (g.center - s.center).norm();
           else if constexpr (std::is_same_v<G, walls::Plane>)
-            return (g.point - s.point).norm() + (g.normal - s.normal).norm() * reach;
+            return (g.point - s.point).norm() +
+                   (g.normal - s.normal).norm() * (reach + (g.point - pivot).norm());
           else
             return std::max({(g.a - s.a).norm(), (g.b - s.b).norm(), (g.c - s.c).norm()});
         },
@@ -311,10 +335,10 @@ struct Wall {
         geometry);
     detail::require(all_finite(options.velocity), obj, "velocity", "(non-finite)", "finite");
     detail::require(all_finite(options.omega), obj, "omega", "(non-finite)", "finite");
-    if (options.temperature) {
-      const double t0 = options.temperature->value(0.0);
-      detail::require(std::isfinite(t0) && t0 >= 0.0, obj, "temperature", t0, "[0, inf) K");
-    }
+    if (options.has_pivot)
+      detail::require(all_finite(options.pivot), obj, "pivot", "(non-finite)",
+                      "finite coordinates [m]");
+    if (options.temperature) detail::require_wall_temperature(obj, *options.temperature);
   }
 
   /// Default pivot of a geometry.
