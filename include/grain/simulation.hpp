@@ -888,6 +888,9 @@ public:
   /// initial forces. Called by run() and step() when needed; raises InputError on bad input.
   void initialize() {
     settle_kick();
+    // not initialised until the end: the stages' initial evaluation (after_forces) sees a set-up,
+    // not a step, and a set-up that throws is checked again by the next run
+    initialized_ = false;
     // a re-initialisation (after adding particles, walls or materials) continues the time
     time_offset_ = time_;
     step0_ = step_;
@@ -2749,9 +2752,12 @@ private:
             gone[i] = 1;
             any = true;
           }
-        // inactive particles whose life ends before they start never appear
+        // inactive particles whose life ends before they start never appear; their ids count
+        // as removed (not to be given again), as for remove_particle on a waiting particle
         std::erase_if(pending_, [&](const ParticleSpec<D>& s) {
-          return std::binary_search(due.begin(), due.end(), s.id);
+          if (!std::binary_search(due.begin(), due.end(), s.id)) return false;
+          removed_ids_.push_back(s.id);
+          return true;
         });
       }
     }

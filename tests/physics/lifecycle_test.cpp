@@ -14,6 +14,7 @@
 // crossing was placed between two step times with a margin of at least 5 % of a step (checked by
 // a REQUIRE), so round-off cannot move it.
 #include "../approx.hpp"
+#include "../errors.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -512,10 +513,18 @@ TEST_CASE(
   sim.steps(1); // step 1001: id 7's creation and destruction are due
   CHECK(sim.inactive_count() == 0);
   CHECK(!sim.is_active(7));
+  CHECK(removed_set(sim) == std::set<std::int64_t>{5, 8, 6, 9, 7}); // listed, never active
   sim.steps(10);
   CHECK(!sim.is_active(7));
   CHECK(sim.size() == 3);
   CHECK(active_ids(sim) == std::set<std::int64_t>{100, 50, 3});
+  // an id that was given is not given again, whether its particle ever appeared or not
+  for (const std::int64_t id : {7, 9})
+    CHECK(grain::test::has(
+        grain::test::error_of([&] {
+          sim.add_particle({.position = Vec3(0.1, 0.1, 0.1), .radius = r, .material = k, .id = id});
+        }),
+        "no other particle has or had"));
   for (const auto& f : keep) {
     const Vec3 x = f.x0 + f.v * sim.time();
     CHECK((sim.particles().position[sim.index_of(f.id)] - x).norm() <= 1e-12);

@@ -812,6 +812,8 @@ TEST_CASE("bodies: invalid input") {
   CHECK(has(error_of([&] { (void)gb::equivalent_mass(one, 0, Vec3::Zero(), Vec3::Zero()); }),
             "direction"));
   CHECK(has(error_of([&] { (void)gb::equivalent_mass(one, 3, Vec3::Zero()); }), "body index = 3"));
+  CHECK(has(error_of([&] { (void)gb::equivalent_mass(one, 0, Vec3::Zero(), 0, Vec3::UnitX()); }),
+            "body j = 0 is invalid; valid range: a body other than body i = 0"));
   CHECK(has(error_of([] { (void)gb::critical_step(1.0, -0.1); }), "damping ratio = -0.1"));
   CHECK(has(error_of([] { (void)gb::natural_frequency(0.0, 1.0); }), "stiffness = 0"));
 }

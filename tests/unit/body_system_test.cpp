@@ -453,6 +453,31 @@ TEST_CASE("body system: bad input raises InputError naming the object, the value
   CHECK(has(e, "BodySystem: adaptive factor = 1.5 is invalid; valid range: [0, 1]"));
   e = error_of([&] { s.add_unspring({.tsprings = {0}, .msprings = {0}, .max = 1.0}); });
   CHECK(has(e, "UNSPRING 0: tsprings[0] = 0 is invalid; valid range: [0, 0)"));
+  {
+    // the springs a rule activates: dormant ones, not those it undoes
+    gb::BodySystem u;
+    u.add_body(body(1.0, 1.0, Vec3::Zero()));
+    u.add_spring(p, 0, Vec3::Zero(), gb::world, Vec3::UnitX());
+    gb::SpringParams dormant = p;
+    dormant.inactive = true;
+    u.add_spring(dormant, 0, Vec3::Zero(), gb::world, Vec3::UnitY());
+    e = error_of(
+        [&] { u.add_unspring({.tsprings = {0}, .msprings = {0}, .max = 1.0, .activate = {0}}); });
+    CHECK(has(e, "UNSPRING 0: activate[0] = 0 is invalid; valid range: a dormant spring"));
+    u.add_spring(dormant, 0, Vec3::Zero(), gb::world, Vec3::UnitZ());
+    e = error_of([&] {
+      u.add_unspring({.tsprings = {0}, .msprings = {0, 1}, .max = 1.0, .activate = {2, 1}});
+    });
+    CHECK(has(e, "activate[1] = 1 is invalid; valid range: a spring not in msprings"));
+    CHECK(u.add_unspring({.tsprings = {0}, .msprings = {0}, .max = 1.0, .activate = {1, 2}}) == 0);
+    // loads on bodies added through bodies() (the arrays grow with them)
+    u.bodies().add(body(2.0, 1.0, Vec3(0, 0, 5)));
+    u.set_external_load(1, Vec3(0, 0, 3), Vec3(0, 1, 0));
+    CHECK(u.external_load(1).first == Vec3(0, 0, 3));
+    u.bodies().add(body(2.0, 1.0, Vec3(0, 0, 9)));
+    CHECK(u.external_load(2).first == Vec3::Zero());
+    CHECK(has(error_of([&] { (void)u.external_load(3); }), "body = 3"));
+  }
   e = error_of([&] { s.set_damping(Vec3(-1.0, 0.0, 0.0), Vec3(Vec3::Zero())); });
   CHECK(
       has(e, "BodySystem damping: coefficient = -1 at t = 0 s is invalid; valid range: [0, inf)"));

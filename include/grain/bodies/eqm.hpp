@@ -78,6 +78,14 @@ inline void require_body(const RigidBodies& b, std::size_t i) {
   grain::detail::require(i < b.size(), "equivalent mass", "body index", i,
                          "[0, " + std::to_string(b.size()) + ")");
 }
+/// Two bodies of a relative equivalent mass: valid, and not the same body (two points of one
+/// rigid body do not move independently, so K1 + K2 would not describe them).
+inline void require_pair(const RigidBodies& b, std::size_t i, std::size_t j) {
+  require_body(b, i);
+  require_body(b, j);
+  grain::detail::require(i != j, "equivalent mass", "body j", j,
+                         "a body other than body i = " + std::to_string(i));
+}
 } // namespace detail
 
 /// Equivalent mass [kg] of the point `point` [m, world] of body i along `direction` (any
@@ -98,16 +106,14 @@ inline double equivalent_mass(const RigidBodies& b, std::size_t i, const Vec3& p
 /// `direction`: 1 / (d^T (K1 + K2) d).
 inline double equivalent_mass(const RigidBodies& b, std::size_t i, const Vec3& p1, std::size_t j,
                               const Vec3& p2, const Vec3& direction) {
-  detail::require_body(b, i);
-  detail::require_body(b, j);
+  detail::require_pair(b, i, j);
   return detail::eqm_along(point_inverse_mass(b, i, p1) + point_inverse_mass(b, j, p2), direction);
 }
 
 /// Smallest relative equivalent mass of p1 on body i and p2 on body j over all directions [kg].
 inline double equivalent_mass(const RigidBodies& b, std::size_t i, const Vec3& p1, std::size_t j,
                               const Vec3& p2) {
-  detail::require_body(b, i);
-  detail::require_body(b, j);
+  detail::require_pair(b, i, j);
   return detail::eqm_min(point_inverse_mass(b, i, p1) + point_inverse_mass(b, j, p2));
 }
 

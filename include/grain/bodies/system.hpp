@@ -371,6 +371,18 @@ public:
   /// index. It is checked once a step, after the springs are evaluated.
   std::size_t add_unspring(UnspringRule rule) {
     if (rule.name == "UNSPRING") rule.name += " " + std::to_string(unsprings_.size());
+    // the springs a rule activates are dormant ones, other than those it undoes (numbers out
+    // of range are reported by Unspring)
+    for (std::size_t j = 0; j < rule.activate.size(); ++j) {
+      const std::size_t s = rule.activate[j];
+      if (s >= spring_params_.size()) continue;
+      const std::string what = "activate[" + std::to_string(j) + "]";
+      grain::detail::require(spring_params_[s].inactive, rule.name, what.c_str(), s,
+                             "a dormant spring (SpringParams::inactive)");
+      grain::detail::require(
+          std::find(rule.msprings.begin(), rule.msprings.end(), s) == rule.msprings.end(),
+          rule.name, what.c_str(), s, "a spring not in msprings (the rule undoes those)");
+    }
     unsprings_.emplace_back(std::move(rule), spring_links_.size());
     return unsprings_.size() - 1;
   }
@@ -429,12 +441,16 @@ public:
     if (!force.allFinite() || !torque.allFinite())
       grain::detail::require(false, "BodySystem::set_external_load", "load", "(non-finite)",
                              "finite components [N], [N m]");
+    external_force_.resize(bodies_.size(), Vec3::Zero()); // bodies added through bodies()
+    external_torque_.resize(bodies_.size(), Vec3::Zero());
     external_force_[i] = force;
     external_torque_[i] = torque;
   }
-  /// The external load of body i (set_external_load) [N], [N m].
+  /// The external load of body i (set_external_load) [N], [N m]; zero if none was set.
   std::pair<Vec3, Vec3> external_load(std::size_t i) const {
-    return {external_force_.at(i), external_torque_.at(i)};
+    require_body("BodySystem::external_load", "body", static_cast<long>(i), false);
+    if (i >= external_force_.size()) return {Vec3::Zero(), Vec3::Zero()};
+    return {external_force_[i], external_torque_[i]};
   }
 
   /// Sets the time [s] (the start of a run, or the clock of a simulation the system is coupled
