@@ -347,6 +347,15 @@ public:
   void set_pair(std::uint32_t a, std::uint32_t b, const PairOverride& o) {
     check_material(a, "set_pair");
     check_material(b, "set_pair");
+    // a negative value keeps the mixed one
+    detail::require(o.restitution < 0.0 || (o.restitution > 0.0 && o.restitution <= 1.0),
+                    "Simulation::set_pair", "restitution", o.restitution,
+                    "(0, 1], or < 0 for the mixed value");
+    for (const auto& [name, v] :
+         {std::pair{"friction", o.friction}, std::pair{"friction_static", o.friction_static},
+          std::pair{"rolling_friction", o.rolling_friction}})
+      detail::require(std::isfinite(v), "Simulation::set_pair", name, v,
+                      "[0, inf), or < 0 for the mixed value");
     const auto n = materials_.size();
     overrides_[a * n + b] = overrides_[b * n + a] = o;
     update_pairs();
@@ -909,8 +918,13 @@ public:
       }
     }
     apply_variable_properties(true);
+    // the largest radius present or to come (the actual radii: for_each_size gives the smallest
+    // radii of the time-step estimate when a radius varies)
     r_max_ = 0.0;
-    for_each_size([&](double r, std::uint32_t, double) { r_max_ = std::max(r_max_, r); });
+    for (double r : particles_.radius)
+      r_max_ = std::max(r_max_, r);
+    for (const auto& s : pending_)
+      r_max_ = std::max(r_max_, s.radius);
     for (const auto& v : vprops_)
       if (v.vp.property == Property::radius)
         for (double r : v.vp.table->y()) r_max_ = std::max(r_max_, r);

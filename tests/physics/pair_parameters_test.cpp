@@ -165,4 +165,10 @@ TEST_CASE("pair parameters: bad input") {
   CHECK(has(e, "materials 'red' and 'blue'"));
   CHECK(has(e, "stiffness"));
   CHECK(has(error_of([&] { sim.set_pair_parameters(0, 7, Contact::Params{}); }), "7"));
+  // a restitution above 1 would make the dashpot add energy
+  const auto r = error_of([&] { sim.set_pair(0, 1, {.restitution = 1.5}); });
+  CHECK(has(r, "Simulation::set_pair: restitution = 1.5 is invalid; valid range: (0, 1]"));
+  CHECK(has(error_of([&] { sim.set_pair(0, 1, {.restitution = 0.0}); }), "restitution = 0"));
+  CHECK(has(error_of([&] { sim.set_pair(0, 1, {.friction = std::nan("")}); }), "friction = nan"));
+  CHECK(error_of([&] { sim.set_pair(0, 1, {.restitution = 1.0, .friction = 0.3}); }).empty());
 }

@@ -294,3 +294,28 @@ TEST_CASE("statistics: counts, totals, means and extremes of known velocities") 
   CHECK(s.velocity[0].max == approx(0.3).epsilon(1e-15));
   CHECK(std::isnan(io::statistics(sim).temperature.mean)); // a mechanical simulation
 }
+
+// The neighbour search is sized by the largest radius present, also when a radius table (here
+// of a small particle's group) holds only smaller values: two large spheres (R = 2 mm) that
+// overlap by 0.1 mm at the start push each other with the static Hertz force
+// F = 4/3 E* sqrt(R/2) delta^3/2 (e = 1: no damping; tolerance 1e-12), and the small one
+// (0.2 mm, its radius held by the table) has none.
+TEST_CASE("variable property: a radius table of small particles does not hide large ones") {
+  HertzSim sim;
+  const Material mp = glass();
+  const auto m = sim.add_material(mp);
+  const double R = 2e-3, delta = 1e-4, r = 2e-4;
+  sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = m});
+  sim.add_particle({.position = {2 * R - delta, 0, 0}, .radius = R, .material = m});
+  const auto s = sim.add_particle({.position = {0.012, 0, 0}, .radius = r, .material = m});
+  sim.add_group("small", {s});
+  sim.add_variable_property(
+      {"small", Property::radius, Variable::time, Table({{0.0, r}, {1.0, r}})});
+  sim.initialize();
+  const double Es = mp.young / (2.0 * (1 - mp.poisson * mp.poisson));
+  const double F = 4.0 / 3.0 * Es * std::sqrt(0.5 * R) * std::pow(delta, 1.5);
+  const auto& p = sim.particles();
+  CHECK(-p.force[sim.index_of(0)].x() == approx(F).epsilon(1e-12));
+  CHECK(p.force[sim.index_of(1)].x() == approx(F).epsilon(1e-12));
+  CHECK(p.force[sim.index_of(s)].norm() == 0.0);
+}

@@ -861,3 +861,53 @@ TEST_CASE("tangential and rolling models: bad parameters name the model, value a
   CHECK_NOTHROW(C::validate({}));
   CHECK_NOTHROW((Interaction<Hz, tangent::SpringDashpotSlider, rolling::Constant>::validate({})));
 }
+
+// The saturating springs (Langston-Tuzun-Heyes, Zheng-Zhu-Yu) with mu_s = mu_d: a contact
+// driven 2 mm along the tangent plane (about 300 delta_t,max; F_n = 1 N, mu = 0.5) slides with
+// its elongation held at delta_t,max (|xi| <= delta_t,max (1 + 1e-12)), and when the motion
+// reverses the spring unloads: the work the tangential force does along the motion is at most
+// the elastic energy stored at the reversal (1e-9 relative); an elongation left growing gave
+// 0.5 N x 1 mm, 300 times that energy.
+TEST_CASE("tangent: a saturated Mindlin-Deresiewicz spring slides and unloads on reversal") {
+  auto drive = [](auto model, auto prm) {
+    using M = decltype(model);
+    ContactGeometry<2> g;
+    g.normal = Vec2(1, 0);
+    g.overlap = 1e-5;
+    g.r_eff = 1e-3;
+    g.m_eff = 1e-3;
+    g.radius_i = g.radius_j = 2e-3;
+    PairProperties pair;
+    pair.friction = pair.friction_static = 0.5;
+    pair.poisson_avg = 0.3;
+    pair.shear_eff = pair.young_eff = 1e9;
+    NormalResult n;
+    n.force = 1.0;
+    n.stiffness = 1e5;
+    typename M::template History<2> h{};
+    const double dt = 1e-6, v = 1.0;
+    TangentResult<2> r;
+    double largest = 0.0;
+    for (int s = 0; s < 2000; ++s) {
+      g.slip_velocity = g.tangential_velocity = Vec2(0, v);
+      r = M::force(g, pair, n, prm, h, dt);
+      largest = std::max(largest, std::abs(h.spring[1]));
+    }
+    CHECK(r.sliding);
+    CHECK(r.force.y() == grain::test::approx(-0.5).epsilon(1e-12));
+    const double stored = r.elastic_energy;
+    CHECK(stored > 0.0);
+    double work = 0.0;
+    for (int s = 0; s < 1000; ++s) {
+      g.slip_velocity = g.tangential_velocity = Vec2(0, -v);
+      r = M::force(g, pair, n, prm, h, dt);
+      work += std::max(0.0, r.force.y() * -v * dt);
+    }
+    CHECK(work <= stored * (1 + 1e-9));
+    return largest;
+  };
+  const double dmax = 0.5 * 1e-5 * (2 - 0.3) / (2 * (1 - 0.3)); // mu_s delta (2 - nu)/(2 (1 - nu))
+  CHECK(drive(tangent::LangstonTuzunHeyes{}, tangent::LangstonTuzunHeyes::Params{.damping = 0.3}) <=
+        dmax * (1 + 1e-12));
+  CHECK(drive(tangent::ZhengZhuYu{}, tangent::ZhengZhuYu::Params{}) <= dmax * (1 + 1e-12));
+}

@@ -198,6 +198,16 @@ GRAIN_INLINE TangentResult<D> spring_step(const ContactGeometry<D>& g, const Pai
       }
     }
   }
+  if constexpr (requires { law.dmax; }) {
+    // a saturated spring (|xi| >= delta_t,max: fully mobilised) slides: its elongation stays at
+    // the saturation point, so that a reversal unloads it at once
+    const double x = xi.norm();
+    if (x >= law.dmax && x > 0.0) {
+      xi *= law.dmax / x;
+      r.sliding = sliding != nullptr;
+      if (sliding) *sliding = true;
+    }
+  }
   store<D>(spring, xi);
   if constexpr (linear)
     r.elastic_energy = 0.5 * law.k * xi.squaredNorm();
