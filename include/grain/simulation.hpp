@@ -108,6 +108,20 @@ inline void wait_for(const std::atomic<int>& flag) {
       std::this_thread::yield();
   }
 }
+/// The calling thread's share [lo, hi) of n items, contiguous and in thread order, as
+/// schedule(static) splits them.
+inline std::pair<long, long> static_share(long n) {
+#ifdef _OPENMP
+  const long threads = omp_get_num_threads(), t = omp_get_thread_num();
+#else
+  const long threads = 1, t = 0;
+#endif
+  const long q = n / threads, r = n % threads;
+  const long lo = t * q + std::min(t, r);
+  return {lo, lo + q + (t < r ? 1 : 0)};
+}
+/// x, or +inf if x is NaN: a maximum taken with std::max would drop a NaN.
+inline double nan_as_inf(double x) { return x == x ? x : std::numeric_limits<double>::infinity(); }
 } // namespace detail
 
 /// What a particle is made of and where it starts (SI units).
@@ -552,8 +566,8 @@ public:
   /// Global damping that changes in time: force -c_t(t) v [c_t in N s/m] and torque -c_r(t) omega
   /// [c_r in N m s], replacing SimulationParams::damping_translational / damping_rotational.
   void set_damping(TimeFunction translational, TimeFunction rotational = {}) {
-    require_non_negative_function("Simulation::set_damping", "translational", translational);
-    require_non_negative_function("Simulation::set_damping", "rotational", rotational);
+    detail::require_non_negative("Simulation::set_damping", "translational", translational, time_);
+    detail::require_non_negative("Simulation::set_damping", "rotational", rotational, time_);
     damping_fn_ = std::make_pair(std::move(translational), std::move(rotational));
   }
   /// Mass-proportional damping per component (the third seed's DAMPING): force -m (d (.) v) and
@@ -688,8 +702,8 @@ public:
   void fix_temperature(const std::string& group, TimeFunction T) {
     static_assert(thermal, "grain::Simulation::fix_temperature needs a thermal simulation: give "
                            "the Interaction a conduction model");
-    require_non_negative_function("Simulation::fix_temperature (group '" + group + "')",
-                                  "temperature", T);
+    detail::require_non_negative("Simulation::fix_temperature (group '" + group + "')",
+                                 "temperature", T, time_, "[0, inf) K");
     const auto g = cond_.find(group);
     for (auto& w : group_walls(g)) {
       walls_[w].options.temperature = T;
@@ -1132,6 +1146,7 @@ public:
     ar(over_[0], over_[1], over_[2], over_[3], over_[4], over_[5]);
     ar(pending_, doomed_, removed_ids_);
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
+    ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
       wall_loads_.assign(list_.walls.size(), WallLoad{});
       wall_loads_pending_ = false;
@@ -1141,8 +1156,7 @@ public:
       origin_.clear();
       removal_requests_.clear(); // the state read is complete
       groups_dirty_ = true;
-      if (var_pairs_) refresh_pair_cache();
-      initialized_ = true;
+      if (var_pairs_ && initialized_) refresh_pair_cache();
     }
   }
 
@@ -1563,15 +1577,6 @@ private:
     return PairProperties::mix(bounding_material(a), bounding_material(b),
                                overrides_[a * materials_.size() + b]);
   }
-  /// A function that must not be negative: checked at the current time, and over every point of
-  /// a table (the values a run will meet for a table; a ramp or an oscillation is checked where
-  /// it is evaluated, see compute_forces).
-  void require_non_negative_function(const std::string& obj, const char* name,
-                                     const TimeFunction& f) const {
-    detail::require(f.value(time_) >= 0.0, obj, name, f.value(time_), "[0, inf)");
-    if (f.kind() == TimeFunction::Kind::table)
-      for (double y : f.table_ptr()->y()) detail::require(y >= 0.0, obj, name, y, "[0, inf) (table value)");
-  }
   bool has_particle(std::int64_t id) const {
     if (is_active(id)) return true;
     for (const auto& s : pending_)
@@ -1659,7 +1664,7 @@ private:
         const long n = static_cast<long>(x.size());
 #pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
         for (long i = 0; i < n; ++i)
-          d2 = std::max(d2, (x[i] - snapshot_[i]).squaredNorm());
+          d2 = std::max(d2, detail::nan_as_inf((x[i] - snapshot_[i]).squaredNorm()));
       }
       const double dp = std::sqrt(d2);
       double dw = 0.0;
@@ -1667,6 +1672,37 @@ private:
       far = 2.0 * dp >= skin_ || dp + dw >= skin_;
     }
     if (SearchT::due(params_.search, steps_since_rebuild_, far)) rebuild();
+  }
+
+  /// Throws NumericalError naming the first particle whose position (or temperature) is not
+  /// finite. A displacement that is not finite counts as infinite, so such a particle forces a
+  /// rebuild, which calls this before sorting by cell.
+  void require_finite_state() const {
+    const auto& p = particles_;
+    auto finite = [&](std::size_t i) {
+      if constexpr (thermal)
+        if (!std::isfinite(p.temperature[i])) return false;
+      return p.position[i].allFinite();
+    };
+    const long n = static_cast<long>(p.size());
+    bool all = true;
+#pragma omp parallel for reduction(&& : all) schedule(static) if (n >= parallel_threshold)
+    for (long i = 0; i < n; ++i)
+      all = all && finite(static_cast<std::size_t>(i));
+    if (all) return;
+    std::size_t i = 0;
+    while (finite(i))
+      ++i;
+    std::string what = "position = (" + detail::vector_text(p.position[i]) + ") m";
+    if constexpr (thermal)
+      if (p.position[i].allFinite())
+        what = "temperature = " + detail::to_text(p.temperature[i]) + " K";
+    throw NumericalError("Simulation: particle " + std::to_string(p.id[i]) + " has " + what +
+                         " at t = " + detail::to_text(time_) + " s (step " + std::to_string(step_) +
+                         "); valid range: a finite number. The time step " + detail::to_text(dt_) +
+                         " s may be above the stable limit " +
+                         detail::to_text(critical_time_step()) +
+                         " s, or a load, property or table may not be finite");
   }
 
   /// The entries of `hist` that are not blank, with their indices.
@@ -1722,6 +1758,7 @@ private:
   void rebuild() {
     auto& p = particles_;
     const std::size_t n = p.size();
+    require_finite_state(); // a non-finite position has no cell
     collect_wall_loads(); // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(list_);
     std::vector<History> old_hist = std::move(history_), old_whist = std::move(wall_history_);
@@ -2666,9 +2703,16 @@ private:
   template <bool Kick, bool Check>
   double fused_pass(long n, const Fused& f) {
     double d2 = 0.0;
-#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i)
-      d2 = std::max(d2, fused_one<Kick, Check>(static_cast<std::size_t>(i), f));
+    // Each thread runs its share backwards: it ends on the particles its first contact chunks
+    // read next, which are then still in the caches (the share is the one the contact pass
+    // starts from; at N = 1e6 the particle data do not fit in the caches).
+#pragma omp parallel reduction(max : d2) if (n >= parallel_threshold)
+    {
+      const auto [lo, hi] = detail::static_share(n);
+      for (long i = hi - 1; i >= lo; --i)
+        d2 = std::max(d2,
+                      detail::nan_as_inf(fused_one<Kick, Check>(static_cast<std::size_t>(i), f)));
+    }
     return d2;
   }
   /// The fused pass for particle i (see fused_before); returns its squared displacement since the

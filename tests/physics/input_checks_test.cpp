@@ -98,3 +98,69 @@ TEST_CASE("input checks: a variable conductivity bounds the time step and cannot
                        InputError);
   for (double T : given.particles().temperature) CHECK(std::isfinite(T));
 }
+
+namespace {
+
+/// A load gone wrong: from `at` seconds on, the particle with id `id` receives a NaN force
+/// (as a user stage or a broken table would give it), or a NaN heat flow if `heat`.
+struct NanLoad {
+  std::int64_t id = 0;
+  double at = 0.0;
+  bool heat = false;
+  template <class Sim>
+  void after_forces(Sim& sim) {
+    if (sim.time() < at) return;
+    auto& p = sim.particles();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.id[i] == id) {
+        if constexpr (requires { p.heat_rate; })
+          if (heat) {
+            p.heat_rate[i] = std::nan("");
+            continue;
+          }
+        p.force[i].x() = std::nan("");
+      }
+  }
+};
+
+/// Spheres falling onto a floor, one of them (id 7) given a NaN load after 0.01 s.
+template <class Sim>
+Sim falling_with_nan_load(bool heat) {
+  typename Sim::Params prm;
+  prm.time_step = 2e-5;
+  prm.gravity = Vec3(0, 0, -9.81);
+  Sim sim(prm);
+  sim.add_material(glass());
+  for (int k = 0; k < 8; ++k)
+    sim.add_particle({.position = {0.03 * k, 0, 0.05},
+                      .radius = 0.01,
+                      .temperature = heat ? 300.0 : std::nan(""),
+                      .id = 3 + k});
+  sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()});
+  sim.template stage<NanLoad>() = NanLoad{.id = 7, .at = 0.01, .heat = heat};
+  return sim;
+}
+
+} // namespace
+
+TEST_CASE_TEMPLATE("numerical checks: a position or temperature that is no longer finite stops "
+                   "the run, naming the particle",
+                   Integrator, integrate::VelocityVerlet, integrate::VelocityVerletHalfStep) {
+  // Without the check a NaN particle drops out of the displacement maximum, keeps no contact and
+  // is never reported. With it, the next step stops with NumericalError.
+  using Sim =
+      Simulation<Sphere, search::CellList, presets::HertzMindlin, Integrator, stages<NanLoad>>;
+  auto sim = falling_with_nan_load<Sim>(false);
+  CHECK_THROWS_WITH_AS(sim.run(0.05), doctest::Contains("particle 7 has position = (nan"),
+                       NumericalError);
+  // the step after the load: t = 0.01 s reached at step 500
+  CHECK(sim.step_count() <= 502);
+  for (std::size_t i = 0; i < sim.particles().size(); ++i)
+    if (sim.particles().id[i] != 7) CHECK(sim.particles().position[i].allFinite());
+
+  // a temperature is checked at the next neighbour-list rebuild (falling spheres rebuild often)
+  using ThermalFall = Simulation<Sphere, search::CellList, Thermal, Integrator, stages<NanLoad>>;
+  auto hot = falling_with_nan_load<ThermalFall>(true);
+  CHECK_THROWS_WITH_AS(hot.run(0.05), doctest::Contains("particle 7 has temperature = nan K"),
+                       NumericalError);
+}

@@ -162,7 +162,7 @@ TEST_CASE("checkpoint: files that do not fit are rejected with the reason") {
     f.close();
     Sim b = make<Sim>();
     CHECK_THROWS_WITH_AS(io::load_checkpoint(b, bad),
-                         doctest::Contains("format version = 99 is invalid; valid: 1"), InputError);
+                         doctest::Contains("format version = 99 is invalid; valid: 2"), InputError);
   }
   SUBCASE("another simulation type") {
     SimEuler b = make<SimEuler>();
@@ -185,6 +185,24 @@ TEST_CASE("checkpoint: files that do not fit are rejected with the reason") {
     std::filesystem::resize_file(bad, std::filesystem::file_size(bad) / 2);
     Sim b = make<Sim>();
     CHECK_THROWS_WITH_AS(io::load_checkpoint(b, bad), doctest::Contains("truncated or corrupt"),
+                         InputError);
+    // the failed load leaves b as it was set up: it runs exactly as a never-loaded set-up does
+    CHECK_FALSE(b.initialized());
+    Sim fresh = make<Sim>();
+    fresh.run(0.001);
+    b.run(0.001);
+    require_identical(fresh, b);
+    // and after a run, a failed load leaves the state of that run
+    CHECK_THROWS_AS(io::load_checkpoint(b, bad), InputError);
+    CHECK(b.initialized());
+    fresh.run(0.001);
+    b.run(0.001);
+    require_identical(fresh, b);
+  }
+  SUBCASE("another search type") {
+    using SimVerlet = Simulation<Sphere, search::VerletList, Contact>;
+    SimVerlet b = make<SimVerlet>();
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, path), doctest::Contains("search Verlet list"),
                          InputError);
   }
   SUBCASE("a missing file and a file of another kind") {

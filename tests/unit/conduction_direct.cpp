@@ -521,3 +521,36 @@ TEST_CASE("Convection: Ranz-Marshall and Whitaker Nusselt numbers") {
   CHECK_NOTHROW(RM::validate({}));
   CHECK_NOTHROW(W::validate({}));
 }
+
+TEST_CASE("Walton-Braun: no heat flows through a contact off its plastic dent") {
+  // below the residual overlap the law carries no force: the particles have left the dent, so
+  // the contact conducts nothing although the overlap (and an area from it) is not zero
+  using C =
+      Interaction<normal::WaltonBraun, tangent::None, rolling::None, conduction::BatchelorOBrien>;
+  Material m = glass();
+  m.restitution = 0.5; // K_U = 4 K_L: residual overlap 3/4 of the largest
+  const PairProperties pair = PairProperties::mix(m, m);
+  const double r = 1e-3;
+  C::Params p;
+  p.normal.stiffness = 1e3;
+  C::History<3> h;
+  auto H_at = [&](double delta, double vn) {
+    const auto g = contact(r, r, 1e-5, 1e-5, delta, vn);
+    const NormalResult n = normal::WaltonBraun::force(g, pair, p.normal, h.normal);
+    return std::pair{n.force, C::conductance(g, pair, n, p, h, 1e-6, 0.0,
+                                             std::numeric_limits<double>::infinity())};
+  };
+  const auto [f_load, H_load] = H_at(2e-6, 0.1); // loading: Batchelor-O'Brien, 4 k sqrt(R* d)
+  CHECK(f_load > 0.0);
+  CHECK(
+      H_load ==
+      grain::test::approx(4.0 * pair.conductivity_eff * std::sqrt(0.5 * r * 2e-6)).epsilon(1e-12));
+  const double residual = normal::WaltonBraun::residual_overlap(pair, p.normal, 1e3, h.normal);
+  REQUIRE(residual > 1e-6);
+  const auto [f_above, H_above] = H_at(0.5 * (residual + 2e-6), -0.1); // unloading, in contact
+  CHECK(f_above > 0.0);
+  CHECK(H_above > 0.0);
+  const auto [f_off, H_off] = H_at(0.9 * residual, -0.1); // below the residual overlap
+  CHECK(f_off == 0.0);
+  CHECK(H_off == 0.0);
+}

@@ -911,3 +911,34 @@ TEST_CASE("tangent: a saturated Mindlin-Deresiewicz spring slides and unloads on
         dmax * (1 + 1e-12));
   CHECK(drive(tangent::ZhengZhuYu{}, tangent::ZhengZhuYu::Params{}) <= dmax * (1 + 1e-12));
 }
+
+TEST_CASE("Walton-Braun with a linear tangential spring: no force jump where loading turns to "
+          "unloading") {
+  // A stuck spring keeps F_t = -k_t xi while the contact turns from loading to unloading, with no
+  // tangential motion. k_t = ratio x the normal model's stiffness; were that the unloading slope
+  // K_U = K_L / e^2, |F_t| would be multiplied by 1/e^2 = 4 here without any work done on it.
+  using C = Interaction<normal::WaltonBraun, tangent::SpringSlider>;
+  const auto pair = pair_of(0.5);
+  const C::Params p = C::resolve(C::Params{.normal = {.stiffness = 1e3}}, pair);
+  C::History<3> h{};
+  const double r = 1e-3, m = 1e-5, dt = 1e-7;
+  auto at = [&](double delta, double vn, double vt) {
+    ContactGeometry<3> g;
+    pair_geometry<3>(g, Vec3::Zero(), Vec3::UnitX(), 2 * r - delta, r, r, m, m, Vec3(vn, vt, 0),
+                     Vec3::Zero(), Vec3::Zero(), Vec3::Zero());
+    return C::evaluate(g, pair, p, h, dt);
+  };
+  // load to 2e-5 m while sliding 1e-8 m sideways (mu F_n = 1e-2 N at the end: the spring sticks)
+  for (int k = 1; k <= 100; ++k)
+    at(2e-7 * k, 2e-7 / dt, 1e-10 / dt);
+  const auto loaded = at(2e-5, 0.0, 0.0);
+  CHECK_FALSE(loaded.tangent.sliding);
+  CHECK(loaded.tangent.force.norm() > 0.0);
+  // unload by 1 % of the overlap with no tangential motion: the normal force drops along K_U,
+  // the tangential force stays (up to the carried spring's rounding)
+  const auto unloaded = at(1.98e-5, -2e-7 / dt, 0.0);
+  CHECK(unloaded.normal.force < loaded.normal.force);
+  CHECK_FALSE(unloaded.tangent.sliding);
+  CHECK(unloaded.tangent.force.norm() ==
+        grain::test::approx(loaded.tangent.force.norm()).epsilon(1e-12));
+}

@@ -169,8 +169,9 @@ public:
       spec.fixed = true;
       const auto id = sim.add_particle(spec);
       ids.push_back(id);
-      const std::size_t i = sim.index_of(id);
       auto& p = sim.particles();
+      // a member is appended at the end (no search over the particles: adding n clumps is O(n))
+      const std::size_t i = !p.id.empty() && p.id.back() == id ? p.id.size() - 1 : sim.index_of(id);
       p.mass[i] = mass * shape.share[k];
       p.inertia[i] = 0.0;
       auto& f = sim.template field<ClumpMember>();

@@ -16,6 +16,13 @@ public:
   using std::invalid_argument::invalid_argument;
 };
 
+/// Raised when a run becomes numerically invalid: a particle position or temperature that is no
+/// longer finite (usually a time step above the stable limit, or a non-finite load or property).
+class NumericalError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
 namespace detail {
 
 template <class T>
@@ -24,6 +31,15 @@ std::string to_text(const T& v) {
   s.precision(10);
   s << v;
   return s.str();
+}
+
+/// The components of a vector, comma-separated: "x, y, z".
+template <class Vec>
+std::string vector_text(const Vec& v) {
+  std::string out;
+  for (long k = 0; k < static_cast<long>(v.size()); ++k)
+    out += (k ? ", " : "") + to_text(v[k]);
+  return out;
 }
 
 /// Throws `InputError("<object>: <name> = <value> is invalid; valid range: <range>")` unless `ok`.

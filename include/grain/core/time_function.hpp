@@ -296,4 +296,18 @@ private:
 template <int D>
 using AngularTimeFunction = std::conditional_t<D == 2, TimeFunction, VectorTimeFunction<3>>;
 
+namespace detail {
+/// Requires a function that must not be negative (a damping, a temperature): its value at time t
+/// finite and >= 0, and so every value of a table (the values a run will meet; a ramp or an
+/// oscillation is checked where it is evaluated). `range` is the valid range with its unit.
+inline void require_non_negative(const std::string& object, const char* name, const TimeFunction& f,
+                                 double t, const std::string& range = "[0, inf)") {
+  const double v = f.value(t);
+  require(std::isfinite(v) && v >= 0.0, object, name, v, range);
+  if (f.kind() == TimeFunction::Kind::table)
+    for (double y : f.table_ptr()->y())
+      require(std::isfinite(y) && y >= 0.0, object, name, y, range + " (table value)");
+}
+} // namespace detail
+
 } // namespace grain

@@ -32,6 +32,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -41,7 +42,7 @@
 namespace grain::io {
 
 /// Version of the checkpoint format; files of another version are rejected.
-inline constexpr std::uint32_t checkpoint_format_version = 1;
+inline constexpr std::uint32_t checkpoint_format_version = 2;
 
 namespace detail {
 
@@ -91,7 +92,7 @@ template <bool Reading>
 class Archive {
 public:
   static constexpr bool reading = Reading;
-  using Stream = std::conditional_t<Reading, std::ifstream, std::ofstream>;
+  using Stream = std::conditional_t<Reading, std::istream, std::ostream>;
 
   Archive(Stream& s, std::string path) : s_(s), path_(std::move(path)) {}
 
@@ -226,9 +227,9 @@ template <class Sim>
 std::string signature() {
   using C = typename Sim::contact_type;
   return std::string(Sim::shape_type::name) + " " + std::to_string(Sim::dimension) + "D, " +
-         describe_contact<C>() + ", integrator " + Sim::integrator_type::name + ", history " +
-         std::to_string(sizeof(typename Sim::History)) + " bytes" +
-         (Sim::thermal ? ", thermal" : "") +
+         describe_contact<C>() + ", search " + Sim::search_type::name + ", integrator " +
+         Sim::integrator_type::name + ", history " + std::to_string(sizeof(typename Sim::History)) +
+         " bytes" + (Sim::thermal ? ", thermal" : "") +
          stage_signature(typename Sim::StageList{}, typename Sim::FieldList{});
 }
 
@@ -316,9 +317,23 @@ void load_checkpoint(Sim& sim, const std::string& path) {
     throw InputError("checkpoint '" + path + "': walls = " + std::to_string(walls) +
                      " is invalid; valid: " + std::to_string(sim.walls().size()) +
                      " (the walls of this simulation, added in the same order)");
-  sim.serialize(ar);
-  ar(m);
-  if (std::memcmp(m, detail::end_mark, 8) != 0) ar.corrupt("the end mark");
+  // The state is read into `sim` directly; should the file turn out truncated or not to fit (a
+  // stage's count, the end mark), `sim` is put back as it was from a copy of its state in memory,
+  // so that a failed load leaves the simulation as it was given.
+  std::stringstream before;
+  {
+    detail::Archive<false> copy(before, path);
+    sim.serialize(copy);
+  }
+  try {
+    sim.serialize(ar);
+    ar(m);
+    if (std::memcmp(m, detail::end_mark, 8) != 0) ar.corrupt("the end mark");
+  } catch (...) {
+    detail::Archive<true> back(before, path);
+    sim.serialize(back);
+    throw;
+  }
   (void)particles;
 }
 

@@ -26,7 +26,11 @@ enum class Slot { normal, tangent, rolling, conduction, area, convection };
 /// Result of a normal-force model (all scalars along the normal).
 struct NormalResult {
   double force = 0.0;     ///< repulsive force magnitude [N] (negative = attractive)
-  double stiffness = 0.0; ///< tangent stiffness dF_elastic/d delta [N/m]
+  /// stiffness [N/m] the tangential and rolling models scale with: dF_elastic/d delta of an
+  /// elastic law, the loading stiffness of a hysteretic one (continuous while in contact); 0
+  /// with no force marks a contact that carries nothing although the bodies overlap (no heat
+  /// flows through it)
+  double stiffness = 0.0;
   double damping = 0.0;   ///< damping coefficient dF/d(delta rate) [N s/m]
   double elastic_energy = 0.0; ///< energy stored in the elastic part [J]
 };

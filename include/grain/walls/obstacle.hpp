@@ -181,7 +181,8 @@ Obstacle add_obstacle(Sim& sim, const walls::TriangleMesh& mesh,
                     ("triangle " + std::to_string(f) + " material").c_str(), options.materials[f],
                     "[0, " + std::to_string(materials) + ") (indices returned by add_material)");
   const double t = sim.time();
-  if (options.temperature) detail::require_wall_temperature(obj, *options.temperature);
+  if (options.temperature)
+    detail::require_non_negative(obj, "temperature", *options.temperature, 0.0, "[0, inf) K");
 
   Obstacle ob;
   ob.name = options.name;

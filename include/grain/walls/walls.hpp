@@ -84,19 +84,6 @@ struct WallOptions {
   std::optional<TimeFunction> temperature{};
 };
 
-namespace detail {
-/// Requires a wall temperature function to be a temperature: finite and at least 0 K at t = 0
-/// and at every point of a table (a ramp or an oscillation is checked where it is evaluated,
-/// Wall::update_temperature).
-inline void require_wall_temperature(const std::string& obj, const TimeFunction& f) {
-  const double t0 = f.value(0.0);
-  require(std::isfinite(t0) && t0 >= 0.0, obj, "temperature", t0, "[0, inf) K");
-  if (f.kind() == TimeFunction::Kind::table)
-    for (double y : f.table_ptr()->y())
-      require(std::isfinite(y) && y >= 0.0, obj, "temperature", y, "[0, inf) K (table value)");
-}
-} // namespace detail
-
 template <int D>
 using WallGeometry = std::conditional_t<D == 2, std::variant<walls::Segment, walls::Circle>,
                                         std::variant<walls::Plane, walls::Triangle>>;
@@ -338,7 +325,8 @@ struct Wall {
     if (options.has_pivot)
       detail::require(all_finite(options.pivot), obj, "pivot", "(non-finite)",
                       "finite coordinates [m]");
-    if (options.temperature) detail::require_wall_temperature(obj, *options.temperature);
+    if (options.temperature)
+      detail::require_non_negative(obj, "temperature", *options.temperature, 0.0, "[0, inf) K");
   }
 
   /// Default pivot of a geometry.

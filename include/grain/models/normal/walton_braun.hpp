@@ -44,8 +44,12 @@
 ///
 /// Isolated impact without cap: delta_max = v sqrt(m*/K_L), F_max = v sqrt(m* K_L),
 /// t_c = (pi/2) sqrt(m*/K_L) (1 + sqrt(K_L/K_U)), e = sqrt(K_L/K_U).
-/// Result: tangent stiffness K_L on the loading line, K_U on the unloading line and at the cap
-/// (the stiffness the contact unloads with; tangential models use it), 0 once separated;
+/// Result: `stiffness` = K_L while the contact carries a force, on every branch (loading,
+/// unloading, cap), 0 once separated. It is the stiffness the tangential and rolling models scale
+/// with (k_t = ratio K_L, as in Walton and Braun and the seed program): reporting the unloading
+/// slope K_U = K_L / e^2 instead would multiply a stuck tangential spring's force by 1/e^2 at the
+/// turn from loading to unloading, with no tangential motion, creating energy.
+/// The slopes of the force itself are K_L and K_U (see `unloading_stiffness`);
 /// damping 0; elastic energy = the energy the contact gives back on unloading, F^2 / (2 K_U).
 /// History: delta_max and F_max (two doubles; plus the impact velocity for
 /// `WaltonBraunPerContact`).
@@ -163,7 +167,7 @@ struct BasicWaltonBraun {
       h.max_force = f;
       const double ku = unloading_stiffness(pair, p, kl, f);
       r.force = f;
-      r.stiffness = capped ? ku : kl;
+      r.stiffness = kl;
       r.elastic_energy = f * f / (2.0 * ku);
     } else {
       // unloading (or re-loading) line through (delta_max, F_max)
@@ -171,7 +175,7 @@ struct BasicWaltonBraun {
       const double residual = h.max_overlap - h.max_force / ku;
       if (d > residual) {
         r.force = ku * (d - residual);
-        r.stiffness = ku;
+        r.stiffness = kl;
         r.elastic_energy = r.force * r.force / (2.0 * ku);
       }
     }
