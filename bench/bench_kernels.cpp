@@ -555,8 +555,7 @@ std::vector<PairProperties> conducting(std::vector<PairProperties> pairs) {
 }
 
 /// `Contact::conductance` as the simulation calls it for a touching pair of spheres (cylinder
-/// length 0, no fluid cell). area::None does not read the normal result beyond its sign: a
-/// touching contact carries a force (one that carries none conducts nothing). A pass reads two
+/// length 0, no fluid cell). The normal result is not used by area::None. A pass reads two
 /// doubles of each 280-byte geometry record, so at the realistic size both variants are bound by
 /// memory traffic; in the simulation the conductance is computed from the geometry at hand.
 void conductance_interaction_pass(const ContactSet<HertzSim>& s,
@@ -564,7 +563,7 @@ void conductance_interaction_pass(const ContactSet<HertzSim>& s,
                                   std::vector<double>& H) {
   ConductionContact::Params params{};
   ConductionContact::History<3> h{};
-  const NormalResult normal{.force = 1.0, .stiffness = 1.0};
+  const NormalResult normal{};
   const double inf = std::numeric_limits<double>::infinity();
   for (std::size_t c = 0; c < s.size(); ++c)
     H[c] = ConductionContact::conductance(s.geometry[c], pairs[s.pair_index[c]], normal, params, h,

@@ -193,15 +193,14 @@ struct Interaction {
 
   /// Conductance H [W/K] of a touching pair whose normal force is `n` (step 4 of the pipeline).
   /// `length` is the cylinder length of 2D disks (0 for spheres), `cell_radius` the fluid-cell
-  /// radius (infinite when unused). A contact that carries nothing (no force and no stiffness:
-  /// a hysteretic law such as Walton-Braun below its residual overlap, off its plastic dent)
-  /// conducts nothing either, whatever the overlap.
+  /// radius (infinite when unused). A contact the normal model reports `detached` (Walton-Braun
+  /// below its residual overlap, off its plastic dent) conducts nothing, whatever the overlap.
   template <int D>
   GRAIN_INLINE static double conductance(const ContactGeometry<D>& g, const PairProperties& pair,
                                          const NormalResult& n, const Params& p, History<D>& h,
                                          double dt, double length, double cell_radius) {
     if constexpr (thermal) {
-      if (n.stiffness == 0.0 && !(n.force > 0.0)) return 0.0;
+      if (n.detached) return 0.0;
       const double a = area_model::radius(g, pair, n, p.area);
       const HeatContext c{.contact_radius = a,
                           .distance = uses_consistent_distance<conduction_model>

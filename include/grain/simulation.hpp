@@ -120,6 +120,12 @@ inline std::pair<long, long> static_share(long n) {
   const long lo = t * q + std::min(t, r);
   return {lo, lo + q + (t < r ? 1 : 0)};
 }
+/// The number of steps of length dt that cover `duration` [s]: rounded up, but a quotient within
+/// rounding of a whole number (relative 1e-12, at least 1e-9 steps) counts as that number.
+inline long steps_for(double duration, double dt) {
+  const double q = duration / dt;
+  return static_cast<long>(std::ceil(q - std::max(1e-9, 1e-12 * q)));
+}
 /// x, or +inf if x is NaN: a maximum taken with std::max would drop a NaN.
 inline double nan_as_inf(double x) { return x == x ? x : std::numeric_limits<double>::infinity(); }
 } // namespace detail
@@ -1112,12 +1118,13 @@ public:
     (detail::finish_observer(obs, *this), ...);
   }
 
-  /// Runs for `duration` seconds of simulated time (rounded up to whole steps).
+  /// Runs for `duration` seconds of simulated time, rounded up to whole steps (a quotient
+  /// duration / dt within rounding of a whole number counts as that number, see detail::steps_for).
   template <class... Observers>
   void run(double duration, Observers&&... obs) {
     detail::require_non_negative("Simulation::run", "duration", duration);
     if (!initialized_) initialize();
-    const long n = static_cast<long>(std::ceil(duration / dt_ - 1e-9));
+    const long n = detail::steps_for(duration, dt_);
     end_time_ = time_ + static_cast<double>(n) * dt_;
     steps(n, std::forward<Observers>(obs)...);
   }
@@ -2087,6 +2094,7 @@ private:
     const auto loads = global_loads(t);
     const V g = std::get<0>(loads);
     const double ct = std::get<1>(loads), cr = std::get<2>(loads);
+    const bool spins = spins_(); // rotational damping acts wherever angular velocities move
     if (tracking_) {
       // power of the global damping (negative: it removes energy)
       const V dv = mass_damping_ ? V(mass_damping_->first(t)) : V(V::Zero());
@@ -2094,7 +2102,7 @@ private:
       for (long i = 0; i < n; ++i) {
         const V& v = force_velocity()[i];
         double w = -ct * v.squaredNorm() - p.mass[i] * v.dot(dv.cwiseProduct(v));
-        if constexpr (Contact::has_torque) {
+        if (spins) {
           const A& o = force_omega()[i];
           if constexpr (D == 2)
             w -= cr * o * o + p.inertia[i] * dw * o * o;
@@ -2113,7 +2121,7 @@ private:
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
       for (long i = 0; i < n; ++i) {
         p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
-        if constexpr (Contact::has_torque) p.torque[i] -= cr * force_omega()[i];
+        if (spins) p.torque[i] -= cr * force_omega()[i];
       }
     } else {
       const V dv = mass_damping_->first(t);
@@ -2122,7 +2130,7 @@ private:
       for (long i = 0; i < n; ++i) {
         const V& v = force_velocity()[i];
         p.force[i] += p.mass[i] * (g - dv.cwiseProduct(v)) - ct * v;
-        if constexpr (Contact::has_torque) {
+        if (spins) {
           const A& w = force_omega()[i];
           if constexpr (D == 2)
             p.torque[i] -= cr * w + p.inertia[i] * dw * w;
@@ -2545,8 +2553,13 @@ private:
   void integrate_temperature(double dt) {
     if constexpr (thermal) {
       const long n = static_cast<long>(particles_.size());
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) temperature_step(static_cast<std::size_t>(i), dt);
+      bool finite = true;
+#pragma omp parallel for reduction(&& : finite) schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) {
+        temperature_step(static_cast<std::size_t>(i), dt);
+        finite = finite && std::isfinite(particles_.temperature[static_cast<std::size_t>(i)]);
+      }
+      if (!finite) require_finite_state();
     }
   }
 
@@ -2685,6 +2698,9 @@ private:
     const double d2 =
         kick ? (check ? fused_pass<true, true>(n, f) : fused_pass<true, false>(n, f))
              : (check ? fused_pass<false, true>(n, f) : fused_pass<false, false>(n, f));
+    // an infinite value: a position or temperature that is not finite (or a displacement too
+    // large to square, which the rebuild it forces handles)
+    if (d2 == std::numeric_limits<double>::infinity()) require_finite_state();
     fused_d2_ = check ? d2 : -1.0;
     prefilled_ = true;
   }
@@ -2716,7 +2732,7 @@ private:
     return d2;
   }
   /// The fused pass for particle i (see fused_before); returns its squared displacement since the
-  /// last neighbour-list build.
+  /// last neighbour-list build (0 without Check), or +inf if its temperature is not finite.
   template <bool Kick, bool Check>
   GRAIN_INLINE double fused_one(std::size_t i, const Fused& f) {
     auto& p = particles_;
@@ -2739,12 +2755,14 @@ private:
         p.torque[i] = -f.cr * p.omega[i];
       }
     } else {
-      p.torque[i] = zero<A>();
+      // no contact torque; a prescribed torque still spins the particle, and damping acts on it
+      p.torque[i] = f.spins ? A(-f.cr * p.omega[i]) : zero<A>();
     }
     if constexpr (thermal) {
       if constexpr (Kick)
         if (f.heat) temperature_step(i, f.dt);
       p.heat_rate[i] = 0.0;
+      if (!std::isfinite(p.temperature[i])) return std::numeric_limits<double>::infinity();
     }
     if constexpr (Check)
       return (p.position[i] - snapshot_[i]).squaredNorm();
@@ -2790,6 +2808,7 @@ private:
     if (box || sink) {
       for (std::size_t i = 0; i < n; ++i) {
         bool out = box && !bounding_box_->contains(p.position[i]);
+        if (out && !p.position[i].allFinite()) require_finite_state(); // not a particle that left
         for (const auto& k : sinks_)
           if (!out && k.active(t) && k.contains(p.position[i])) out = true;
         if (out) gone[i] = 1;

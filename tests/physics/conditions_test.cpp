@@ -247,6 +247,32 @@ TEST_CASE("conditions: prescribed torque without a torque-producing contact mode
         approx(T.z() * sim.time() / sphere_inertia()).epsilon(1e-12));
 }
 
+// Rotational damping acts on whatever spins: with a contact model that makes no torque, a
+// prescribed torque T against the damping torque -c_r omega levels off at omega = T / c_r
+// (omega = T/c_r (1 - exp(-c_r t / I))), for the integrator with the fused pass and the one
+// without, and with mass-proportional damping (c = I d_w) as well.
+TEST_CASE_TEMPLATE("conditions: rotational damping without a torque-producing contact model",
+                   Integrator, integrate::VelocityVerletHalfStep, integrate::SymplecticEuler) {
+  using Frictionless = Interaction<normal::Hertz<>>;
+  using S = Simulation<Sphere, search::CellList, Frictionless, Integrator>;
+  const double I = sphere_inertia(), T = 2e-5, c = 200.0 * I; // time constant I / c = 5 ms
+  for (bool mass_proportional : {false, true}) {
+    typename S::Params p;
+    p.time_step = 1e-5;
+    if (!mass_proportional) p.damping_rotational = c;
+    S sim(p);
+    const auto k = sim.add_material(grain_material());
+    const auto id = sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k});
+    if (mass_proportional) sim.set_mass_damping(Vec3(Vec3::Zero()), Vec3(Vec3::Constant(c / I)));
+    sim.prescribe_torque("all", Vec3(0, 0, T));
+    sim.run(0.02); // four time constants
+    const double t = sim.time();
+    // tolerance: the schemes' O(dt/tau) = 2e-3 error on the transient
+    CHECK(sim.particles().omega[sim.index_of(id)].z() ==
+          approx(T / c * (1.0 - std::exp(-c * t / I))).epsilon(5e-3));
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
 // 3. thermal conditions
 // ------------------------------------------------------------------------------------------------

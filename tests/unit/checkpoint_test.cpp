@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 using namespace grain;
@@ -192,12 +193,25 @@ TEST_CASE("checkpoint: files that do not fit are rejected with the reason") {
     fresh.run(0.001);
     b.run(0.001);
     require_identical(fresh, b);
-    // and after a run, a failed load leaves the state of that run
+    // and after a run, a failed load leaves the state of that run: the loads on the walls of
+    // its last step and a removal requested since
+    static_assert(std::is_copy_assignable_v<Sim>);
+    for (int k = 0; k < 200 && b.wall_force(0).norm() == 0.0; ++k) { // until the floor is hit
+      fresh.run(1e-4);
+      b.run(1e-4);
+    }
+    const Vec3 floor_load = b.wall_force(0);
+    REQUIRE(floor_load.norm() > 0.0);
+    const std::int64_t victim = b.particles().id[0];
+    b.remove_particle(victim);
+    fresh.remove_particle(victim);
     CHECK_THROWS_AS(io::load_checkpoint(b, bad), InputError);
     CHECK(b.initialized());
+    CHECK(b.wall_force(0) == floor_load);
     fresh.run(0.001);
     b.run(0.001);
     require_identical(fresh, b);
+    CHECK_FALSE(b.is_active(victim));
   }
   SUBCASE("another search type") {
     using SimVerlet = Simulation<Sphere, search::VerletList, Contact>;

@@ -82,6 +82,19 @@ std::vector<double> state_bits(const Sim& sim) {
 }
 } // namespace
 
+TEST_CASE("run(duration): the number of steps is the quotient rounded up, rounding forgiven") {
+  // 16.78 / 1e-6 is 16780000.000000002 in floating point: a fixed tolerance of 1e-9 steps gave
+  // one step more than asked for above about 2^23 steps
+  CHECK(detail::steps_for(16.78, 1e-6) == 16780000);
+  CHECK(detail::steps_for(12.3, 5e-7) == 24600000);
+  CHECK(detail::steps_for(0.3, 0.1) == 3); // 2.9999999999999996
+  CHECK(detail::steps_for(1.0, 0.3) == 4);
+  CHECK(detail::steps_for(0.9, 0.3) == 3);
+  CHECK(detail::steps_for(1e-3, 1e-4) == 10);
+  CHECK(detail::steps_for(1.0000001, 0.1) == 11); // a real excess is a step more
+  CHECK(detail::steps_for(0.0, 0.1) == 0);
+}
+
 TEST_CASE("free flight under gravity is exact with velocity Verlet") {
   Simulation<Sphere, search::CellList, Contact3> sim({.time_step = 1e-5, .gravity = Vec3(0, 0, -9.81)});
   auto m = sim.add_material(soft);

@@ -317,22 +317,37 @@ void load_checkpoint(Sim& sim, const std::string& path) {
     throw InputError("checkpoint '" + path + "': walls = " + std::to_string(walls) +
                      " is invalid; valid: " + std::to_string(sim.walls().size()) +
                      " (the walls of this simulation, added in the same order)");
-  // The state is read into `sim` directly; should the file turn out truncated or not to fit (a
-  // stage's count, the end mark), `sim` is put back as it was from a copy of its state in memory,
-  // so that a failed load leaves the simulation as it was given.
-  std::stringstream before;
-  {
-    detail::Archive<false> copy(before, path);
-    sim.serialize(copy);
-  }
-  try {
+  // The state is read into `sim` directly. Should the file turn out truncated or not to fit (a
+  // stage's count, the end mark), `sim` is put back as it was given, from a copy of it (or, for
+  // a simulation that cannot be copied, a stage holding a stream say, from a copy of its run
+  // state in memory, which loses the loads of the last step on walls and removals requested
+  // since it).
+  auto read = [&] {
     sim.serialize(ar);
     ar(m);
     if (std::memcmp(m, detail::end_mark, 8) != 0) ar.corrupt("the end mark");
-  } catch (...) {
-    detail::Archive<true> back(before, path);
-    sim.serialize(back);
-    throw;
+  };
+  if constexpr (std::is_copy_assignable_v<Sim> && std::is_copy_constructible_v<Sim>) {
+    Sim before(sim);
+    try {
+      read();
+    } catch (...) {
+      sim = std::move(before);
+      throw;
+    }
+  } else {
+    std::stringstream before;
+    {
+      detail::Archive<false> copy(before, path);
+      sim.serialize(copy);
+    }
+    try {
+      read();
+    } catch (...) {
+      detail::Archive<true> back(before, path);
+      sim.serialize(back);
+      throw;
+    }
   }
   (void)particles;
 }

@@ -27,12 +27,13 @@ enum class Slot { normal, tangent, rolling, conduction, area, convection };
 struct NormalResult {
   double force = 0.0;     ///< repulsive force magnitude [N] (negative = attractive)
   /// stiffness [N/m] the tangential and rolling models scale with: dF_elastic/d delta of an
-  /// elastic law, the loading stiffness of a hysteretic one (continuous while in contact); 0
-  /// with no force marks a contact that carries nothing although the bodies overlap (no heat
-  /// flows through it)
+  /// elastic law, the loading stiffness of a hysteretic one (continuous while in contact)
   double stiffness = 0.0;
   double damping = 0.0;   ///< damping coefficient dF/d(delta rate) [N s/m]
   double elastic_energy = 0.0; ///< energy stored in the elastic part [J]
+  /// True if the bodies overlap but the contact carries nothing: a hysteretic law below its
+  /// residual overlap, the particles off their plastic dent. No heat flows through it.
+  bool detached = false;
 };
 
 /// Result of a tangential-force model.

@@ -49,6 +49,7 @@
 /// with (k_t = ratio K_L, as in Walton and Braun and the seed program): reporting the unloading
 /// slope K_U = K_L / e^2 instead would multiply a stuck tangential spring's force by 1/e^2 at the
 /// turn from loading to unloading, with no tangential motion, creating energy.
+/// Below the residual overlap the result is `detached` (no force, stiffness 0, no heat flow).
 /// The slopes of the force itself are K_L and K_U (see `unloading_stiffness`);
 /// damping 0; elastic energy = the energy the contact gives back on unloading, F^2 / (2 K_U).
 /// History: delta_max and F_max (two doubles; plus the impact velocity for
@@ -177,6 +178,8 @@ struct BasicWaltonBraun {
         r.force = ku * (d - residual);
         r.stiffness = kl;
         r.elastic_energy = r.force * r.force / (2.0 * ku);
+      } else {
+        r.detached = true; // off the dent: no force, no stiffness, no heat flow
       }
     }
     return r;
