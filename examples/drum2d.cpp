@@ -2,7 +2,7 @@
 /// A hot rotating drum heats a bed of cold copper disks (2D, thermo-mechanical).
 ///
 /// A drum of radius 40 mm (a `walls::Circle`, held at 400 K) turns at 3 rad/s about its centre;
-/// 600 copper disks (radii 1.0-1.5 mm, drawn from a fixed seed so every run is identical) start
+/// 312 copper disks (radii 1.0-1.5 mm, drawn from a fixed seed so every run is identical) start
 /// at 300 K on a loose lattice in its lower half, fall, and are carried up the drum wall. Heat
 /// enters the bed through the contacts with the wall and spreads through the contacts between
 /// disks, helped by the mixing of the tumbling bed.

@@ -58,11 +58,14 @@ int main(int argc, char** argv) {
                                        .young = 1e8, .poisson = 0.34, .young_real = 1.2e11,
                                        .restitution = 0.5, .friction = 0.4,
                                        .conductivity = 400.0, .heat_capacity = 385.0});
-  sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.name = "floor", .material = copper});
-  sim.add_wall(walls::Plane{{0, 0, 0}, {1, 0, 0}}, {.name = "x-", .material = copper});
-  sim.add_wall(walls::Plane{{side, 0, 0}, {-1, 0, 0}}, {.name = "x+", .material = copper});
-  sim.add_wall(walls::Plane{{0, 0, 0}, {0, 1, 0}}, {.name = "y-", .material = copper});
-  sim.add_wall(walls::Plane{{0, side, 0}, {0, -1, 0}}, {.name = "y+", .material = copper});
+  // Five planes, each given by the centre of its face of the box (where the VTK files draw it as
+  // a square of side `side`) and a normal pointing into the box.
+  constexpr double mid = 0.5 * side;
+  sim.add_wall(walls::Plane{{mid, mid, 0}, {0, 0, 1}}, {.name = "floor", .material = copper});
+  sim.add_wall(walls::Plane{{0, mid, mid}, {1, 0, 0}}, {.name = "x-", .material = copper});
+  sim.add_wall(walls::Plane{{side, mid, mid}, {-1, 0, 0}}, {.name = "x+", .material = copper});
+  sim.add_wall(walls::Plane{{mid, 0, mid}, {0, 1, 0}}, {.name = "y-", .material = copper});
+  sim.add_wall(walls::Plane{{mid, side, mid}, {0, -1, 0}}, {.name = "y+", .material = copper});
 
   example::Random rng{11};
   std::int64_t id = 0;
@@ -95,7 +98,7 @@ int main(int argc, char** argv) {
   };
   const double heat0 = sim.thermal_energy();
   const std::string prefix = (out_dir / "hot_pour3d").string();
-  sim.run(end_time, io::summary(), io::every(0.05, log), io::every(0.05, io::vtk(prefix)),
+  sim.run(end_time, io::summary(), io::every(0.05, log), io::every(0.05, io::vtk(prefix, side)),
           io::progress());
 
   const auto& p = sim.particles();

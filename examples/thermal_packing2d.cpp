@@ -2,9 +2,10 @@
 /// Heat conduction through a static packing of disks between a hot and a cold wall (2D, thermal
 /// analysis: particles never move; contacts and conductances are computed once).
 ///
-/// 20 x 12 equal aluminium disks (R = 1 mm, 2 mm long cylinders) on a triangular lattice, each
-/// touching its six neighbours with an overlap of 10 um, fill the space between a hot wall (left, 350 K) and a cold
-/// wall (right, 300 K); the top and bottom walls are insulated. Conduction is Batchelor-O'Brien,
+/// 234 equal aluminium disks (R = 1 mm, 2 mm long cylinders) on a triangular lattice, 12 rows of
+/// alternately 20 and 19 disks, each touching its six neighbours with an overlap of 10 um, fill
+/// the space between a hot wall (left, 350 K) and a cold wall (right, 300 K); the top and bottom
+/// walls are insulated. Conduction is Batchelor-O'Brien,
 /// H = 4 k* a, through the Hertz contact radius.
 ///
 /// A triangular network of equal conductances H under a uniform gradient dT/dx carries H dT/dx

@@ -728,7 +728,8 @@ public:
   void prescribe_motion(const std::string& group, std::optional<VectorTimeFunction<D>> linear,
                         std::optional<AngularTimeFunction<D>> angular,
                         std::string_view kind = "vv") {
-    const auto [lk, ak] = motion_kinds(kind);
+    const auto [lk, ak] =
+        motion_kinds(kind, "Simulation::prescribe_motion (group '" + group + "')");
     const auto g = cond_.find(group);
     if (!linear && !angular)
       throw InputError("Simulation::prescribe_motion (group '" + group +
@@ -767,6 +768,8 @@ public:
     cond_.restraints.push_back(std::move(r));
     groups_dirty_ = true;
     ensure_groups();
+    // between runs: the loads of the last evaluation, which the next first half kick uses, too
+    cond_.restrain_loads(particles_);
     cond_.restrain_velocities(particles_);
   }
 
@@ -1247,6 +1250,14 @@ public:
   std::size_t size() const { return particles_.size(); }
 
   /// Current index of the particle with this id (particles are re-sorted by the cell list).
+  /// True if a prescribed motion (fix_velocity, fix_omega, prescribe_motion) or a restraint
+  /// covers the particle with this id.
+  bool motion_controlled(std::int64_t id) const {
+    ensure_groups();
+    for (const auto& c : cond_.controls)
+      if (c.id == id) return true;
+    return false;
+  }
   std::size_t index_of(std::int64_t id) const {
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (particles_.id[i] == id) return i;
@@ -1895,7 +1906,7 @@ private:
 
   /// Applies the variable properties that are due (all active ones if `all`) at the current time;
   /// returns true if something changed.
-  bool apply_variable_properties(bool all) {
+  bool apply_variable_properties(bool all, const std::vector<char>* only = nullptr) {
     if (vprops_.empty()) return false;
     ensure_groups();
     auto& p = particles_;
@@ -1906,6 +1917,7 @@ private:
       const Table& tab = *vp.table;
       std::size_t hint = 0;
       for (const auto i : cond_.members[g]) {
+        if (only && !(*only)[i]) continue;
         double x = 0.0;
         switch (vp.variable) {
         case Variable::temperature:
@@ -2856,6 +2868,7 @@ private:
       keep_particles(kept);
     }
     bool born = false;
+    std::vector<std::int64_t> born_ids;
     if (!pending_.empty()) {
       if (!any) {
         kept.resize(n);
@@ -2867,6 +2880,7 @@ private:
           append_particle(s);
           p.force.back() = p.mass.back() * gravity(); // its first half kick feels its weight
           kept.push_back(none);
+          born_ids.push_back(p.id.back());
           born = true;
         } else {
           still.push_back(s);
@@ -2880,9 +2894,18 @@ private:
     rebuild();
     ensure_groups();
     if (born) {
+      cond_.restrain_loads(p); // the first half kick of a newborn particle too
       cond_.restrain_velocities(p);
       if constexpr (thermal)
         if (heats()) cond_.fix_temperatures(p, t);
+      if (!vprops_.empty()) {
+        // a newborn particle takes its variable properties now, not at the next update
+        std::sort(born_ids.begin(), born_ids.end());
+        std::vector<char> newborn(p.size(), 0);
+        for (std::size_t i = 0; i < p.size(); ++i)
+          newborn[i] = std::binary_search(born_ids.begin(), born_ids.end(), p.id[i]) ? 1 : 0;
+        apply_variable_properties(true, &newborn);
+      }
     }
     if constexpr (thermal)
       if (analysis() == Analysis::thermal) store_conductances();

@@ -130,6 +130,24 @@ TEST_CASE("conditions: free sphere under a sinusoidal prescribed force") {
   }
 }
 
+TEST_CASE("conditions: a force pulse acts once per step its interval covers, ends included") {
+  // F on [0.5, 1.0] s, dt = 2^-12 s (the step times hit both ends exactly): 2049 evaluations,
+  // impulse 2049 F dt (one step more than F x 0.5 s); the interval moved by dt/2 covers 2048
+  // evaluations, impulse F x 0.5 s. Velocity Verlet, no gravity; tolerance: round-off, 1e-12.
+  const double dt = 1.0 / 4096.0, F = 1e-3;
+  auto velocity_after = [&](double a, double b) {
+    auto sim = make<Sim3<>>(dt);
+    const auto k = sim.add_material(grain_material());
+    const auto id = sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k});
+    sim.prescribe_force("all", VectorTimeFunction<3>(Vec3(F, 0, 0)).active(a, b));
+    sim.steps(6144); // 1.5 s
+    return sim.particles().velocity[sim.index_of(id)].x();
+  };
+  CHECK(velocity_after(0.5, 1.0) == approx(2049 * F * dt / sphere_mass()).epsilon(1e-12));
+  CHECK(velocity_after(0.5 + dt / 2, 1.0 + dt / 2) ==
+        approx(0.5 * F / sphere_mass()).epsilon(1e-12));
+}
+
 TEST_CASE_TEMPLATE("conditions: prescribed forces on a group are summed", I,
                    GRAIN_ALL_INTEGRATORS) {
   // two constant forces on the same group: v = (F1 + F2) t / m, x = (F1 + F2) t^2 / (2 m).
@@ -566,6 +584,62 @@ TEST_CASE_TEMPLATE("conditions: a particle with prescribed velocity pushes into 
 // 5. restraints
 // ------------------------------------------------------------------------------------------------
 
+TEST_CASE("conditions: each component of a prescribed velocity follows its own interval") {
+  // fix_velocity (0, 0, -0.05 m/s while t <= 0.5 s) under gravity (0, 0, -g): x and y are held
+  // at 0 throughout; z moves at -0.05 m/s until 0.5 s and then falls freely from that velocity:
+  // v_z = -0.05 - g (t - 0.5), z = z0 - 0.025 - 0.05 (t - 0.5) - g (t - 0.5)^2 / 2. A second
+  // particle has its x angular velocity held at 2 rad/s until 0.5 s under a torque (T, 0, 0),
+  // then spins up freely: omega_x = 2 + T (t - 0.5) / I. Velocity Verlet is exact for constant
+  // loads: tolerance 1e-9 relative (round-off of 1e4 steps).
+  const double dt = 1e-4, g = 9.81, T = 1e-6;
+  auto sim = make<Sim3<>>(dt);
+  sim.set_gravity(Vec3(0, 0, -g));
+  const auto k = sim.add_material(grain_material());
+  const Vec3 x0(0.0, 0.0, 1.0);
+  const auto a = sim.add_particle({.position = x0, .radius = R, .material = k});
+  const auto b = sim.add_particle({.position = {0.5, 0, 0}, .radius = R, .material = k});
+  sim.add_group("a", {a});
+  sim.add_group("b", {b});
+  sim.fix_velocity("a",
+                   VectorTimeFunction<3>(0.0, 0.0, TimeFunction::constant(-0.05).active(0, 0.5)));
+  sim.fix_omega("b", VectorTimeFunction<3>(TimeFunction::constant(2.0).active(0, 0.5), 0.0, 0.0));
+  sim.prescribe_torque("b", Vec3(T, 0, 0));
+  sim.steps(10000);
+  const double t = sim.time(), s = t - 0.5;
+  const auto& P = sim.particles();
+  const auto i = sim.index_of(a);
+  CHECK(P.position[i].x() == 0.0);
+  CHECK(P.position[i].y() == 0.0);
+  CHECK(P.velocity[i].x() == 0.0);
+  CHECK(P.velocity[i].y() == 0.0);
+  CHECK(P.velocity[i].z() == approx(-0.05 - g * s).epsilon(1e-9));
+  CHECK(P.position[i].z() == approx(x0.z() - 0.025 - 0.05 * s - g * s * s / 2).epsilon(1e-9));
+  const auto j = sim.index_of(b);
+  CHECK(P.omega[j].x() == approx(2.0 + T * s / sphere_inertia()).epsilon(1e-9));
+  CHECK(P.omega[j].y() == 0.0);
+  CHECK(P.omega[j].z() == 0.0);
+  CHECK(P.velocity[j].z() == approx(-g * t).epsilon(1e-9)); // b's linear motion is free
+}
+
+TEST_CASE("conditions: a restraint added between runs holds from the first step after it") {
+  // a sphere falls under gravity (1, 0, -9.81) for 100 steps; z is then restrained: z and v_z
+  // stay exactly where the first run left them (the loads of the last evaluation, used by the
+  // next first half kick, lose their z component too), x keeps accelerating.
+  const double dt = 1e-4;
+  auto sim = make<Sim3<>>(dt);
+  sim.set_gravity(Vec3(1.0, 0.0, -9.81));
+  const auto k = sim.add_material(grain_material());
+  const auto id = sim.add_particle({.position = {0, 0, 1}, .radius = R, .material = k});
+  sim.steps(100);
+  const double z1 = sim.particles().position[sim.index_of(id)].z();
+  sim.restrain("all", {Vec3::UnitZ()});
+  sim.steps(100);
+  const auto i = sim.index_of(id);
+  CHECK(sim.particles().position[i].z() == z1);
+  CHECK(sim.particles().velocity[i].z() == 0.0);
+  CHECK(sim.particles().position[i].x() == approx(0.5 * sim.time() * sim.time()).epsilon(1e-9));
+}
+
 TEST_CASE("conditions: restraints remove motion along the restrained directions") {
   const double dt = 1e-5;
   const long n = 10000;
@@ -860,6 +934,8 @@ TEST_CASE("conditions: input errors name the offending value") {
   // prescribed motion kind
   CHECK_THROWS_WITH_AS(sim.prescribe_motion("low", Vec3(1, 0, 0), std::nullopt, "xy"),
                        doctest::Contains("kind = 'xy' is invalid"), InputError);
+  CHECK_THROWS_WITH_AS(sim.prescribe_motion("low", Vec3(1, 0, 0), std::nullopt, "xy"),
+                       doctest::Contains("prescribe_motion (group 'low')"), InputError);
   // dependent restraint directions
   CHECK_THROWS_WITH_AS(sim.restrain("low", {Vec3(1, 0, 0), Vec3(-2, 0, 0)}),
                        doctest::Contains("linearly dependent"), InputError);

@@ -244,6 +244,23 @@ TEST_CASE("coupled bodies: a step above the springs' critical step is rejected")
   CHECK_THROWS_AS(c.attach(sim, id), InputError); // already a body
 }
 
+TEST_CASE("coupled bodies: an attached particle under a prescribed motion is refused") {
+  // the body places its particle every step: a fixed velocity of the simulation on the same
+  // particle would be dropped silently, so the run does not start
+  const double r = 0.01;
+  Sim sim = make_sim(1e-5);
+  const auto id = add_sphere(sim, Vec3(0, 0, 0), r);
+  add_sphere(sim, Vec3(0.1, 0, 0), r);
+  auto& c = sim.stage<gb::Coupling>();
+  c.attach(sim, id);
+  sim.add_group("moved", {id});
+  sim.fix_velocity("moved", Vec3(0.1, 0, 0));
+  const auto e = test::error_of([&] { sim.steps(1); });
+  CHECK(test::has(e, "Coupling: particle id = " + std::to_string(id)));
+  CHECK(test::has(e, "prescribed motion or restraint"));
+  CHECK(sim.time() == 0.0);
+}
+
 namespace {
 /// A cradle of two pendula (ball joints) whose first ball also hangs on a damped spring; a
 /// third, free sphere lies on a floor in the path of the second ball.

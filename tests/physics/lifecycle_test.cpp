@@ -436,6 +436,28 @@ TEST_CASE("lifecycle: an activated particle falls exactly like one present from 
   CHECK(sim.particles().velocity[i].z() == test::approx(-g0 * tau).epsilon(1e-9));
 }
 
+TEST_CASE("lifecycle: a particle activated under a restraint never moves along it") {
+  // gravity (1, 0, -g0) with z restrained for all particles: the particle that joins at step 501
+  // keeps its z exactly from its first step on (its first half kick sees the restrained weight)
+  // and accelerates along x at 1 m/s^2 (1e-9 relative).
+  Sim3 sim(params<Sim3>(Vec3(1.0, 0, -g0)));
+  const auto k = sim.add_material(soft());
+  const long nf = 501;
+  sim.add_particle({.position = Vec3(0, 0, 0.25),
+                    .radius = 5e-3,
+                    .material = k,
+                    .creation_time = (nf - 0.5) * dt,
+                    .id = 3});
+  sim.restrain("all", {Vec3::UnitZ()});
+  sim.steps(nf + 1000);
+  REQUIRE(sim.is_active(3));
+  const double tau = sim.time() - nf * dt;
+  const std::size_t i = sim.index_of(3);
+  CHECK(sim.particles().position[i].z() == 0.25);
+  CHECK(sim.particles().velocity[i].z() == 0.0);
+  CHECK(sim.particles().position[i].x() == test::approx(0.5 * tau * tau).epsilon(1e-9));
+}
+
 // ------------------------------------------------------------------------------------------ 4
 // Destruction time. No gravity, particles far apart in straight flight. A particle is removed at
 // the first step time >= its destruction time: id 5 at t_d = 300 dt exactly (the same product

@@ -319,3 +319,24 @@ TEST_CASE("variable property: a radius table of small particles does not hide la
   CHECK(p.force[sim.index_of(1)].x() == approx(F).epsilon(1e-12));
   CHECK(p.force[sim.index_of(s)].norm() == 0.0);
 }
+
+TEST_CASE("variable property: a particle activated later takes its properties at activation") {
+  // density 5000 kg/m^3 by a table of time, updated every 1000 steps; the second particle joins
+  // at t = 1.5 ms (step 1500), between two updates. Its mass is that of the table's density from
+  // its first step on (exactly: rho 4/3 pi R^3, the same arithmetic as the update).
+  HertzSim::Params prm;
+  prm.time_step = 1e-6;
+  HertzSim sim(prm);
+  const auto m = sim.add_material(glass());
+  const double R = 0.004, rho = 5000.0;
+  sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = m});
+  const auto late = sim.add_particle(
+      {.position = {0.1, 0, 0}, .radius = R, .material = m, .creation_time = 1.5e-3});
+  sim.add_variable_property(
+      {"all", Property::density, Variable::time, Table({{0.0, rho}, {1.0, rho}}), 1000});
+  sim.run(1.8e-3); // ends between the updates of steps 1000 and 2000
+  REQUIRE(sim.is_active(late));
+  const double mass = rho * (4.0 / 3.0 * pi * R * R * R);
+  CHECK(sim.particles().mass[sim.index_of(late)] == approx(mass).epsilon(1e-14));
+  CHECK(sim.particles().mass[sim.index_of(0)] == approx(mass).epsilon(1e-14));
+}

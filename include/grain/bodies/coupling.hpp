@@ -39,7 +39,9 @@
 /// body's). A stage that adds forces to attached particles in `after_forces` must come before
 /// `Coupling` in the stage list. Attaching or converting a particle between runs re-initialises
 /// the simulation; after adding springs or joints between runs, call `sim.initialize()` to have
-/// them checked before the next run.
+/// them checked before the next run. An attached particle must not be under a prescribed motion or
+/// restraint of the simulation (`fix_velocity`, `fix_omega`, `prescribe_motion`, `restrain`): the
+/// body places it every step, so `initialize` refuses the combination (InputError naming the id).
 ///
 /// ## Converted particles
 /// `convert(sim, id, options)` turns a particle into an analytical body (Parmec's ANALYTICAL
@@ -164,12 +166,24 @@ public:
   const std::vector<std::size_t>& attached() const noexcept { return attached_; }
 
   // ------------------------------------------------------------------ hooks
-  /// Checks the time step against the system's critical step.
+  /// Checks the time step against the system's critical step, and that no attached particle is
+  /// under a prescribed motion or restraint of the simulation (its body moves it).
   template <class Sim>
   void initialize(Sim& sim) {
     require_simulation<Sim>();
-    if constexpr (fits<Sim>)
+    if constexpr (fits<Sim>) {
+      for (const std::size_t k : attached_) {
+        const std::int64_t id = particle_[k];
+        if (sim.is_active(id) && sim.motion_controlled(id))
+          throw InputError("Coupling: particle id = " + std::to_string(id) + " (body " +
+                           std::to_string(k) +
+                           ") is under a prescribed motion or restraint of the simulation, which "
+                           "its body would override; valid: an attached particle without "
+                           "fix_velocity, fix_omega, prescribe_motion or restrain (give the "
+                           "body's motion in the body system)");
+      }
       if (sim.moves()) check_step(sim);
+    }
   }
 
   /// The system's first kick, joint impulses and drift; attached particles placed.

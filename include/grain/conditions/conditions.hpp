@@ -18,7 +18,8 @@
 ///
 /// Prescribed motion (the kinds "vv", "va", "av", "aa" of a linear and an angular history, each
 /// a velocity or an acceleration) overrides the dynamics of the part (linear or angular) it
-/// prescribes while its function is active, whatever the integrator: over a step [t, t + dt] a
+/// prescribes while its function is active (each component while its own function is active),
+/// whatever the integrator: over a step [t, t + dt] a
 /// prescribed velocity moves the particle by dt v(t + dt/2) and leaves it with v(t + dt); a
 /// prescribed acceleration a gives v += dt a(t + dt/2) and x += dt (v_old + v_new)/2 (exact for a
 /// constant or linear velocity history). When several motion conditions cover a particle, the
@@ -34,6 +35,7 @@
 #include <grain/core/vector.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -58,12 +60,13 @@ enum class MotionKind : std::uint8_t { velocity, acceleration };
 
 /// The third seed's kind strings: "vv", "va", "av", "aa" = (linear, angular) each a velocity (v)
 /// or an acceleration (a).
-inline std::pair<MotionKind, MotionKind> motion_kinds(std::string_view kind) {
+inline std::pair<MotionKind, MotionKind>
+motion_kinds(std::string_view kind, const std::string& obj = "prescribed motion") {
   auto one = [&](char c) { return c == 'v' ? MotionKind::velocity : MotionKind::acceleration; };
   const bool ok =
       kind.size() == 2 && (kind[0] == 'v' || kind[0] == 'a') && (kind[1] == 'v' || kind[1] == 'a');
   if (!ok)
-    throw InputError("prescribed motion: kind = '" + std::string(kind) +
+    throw InputError(obj + ": kind = '" + std::string(kind) +
                      "' is invalid; valid values: 'vv', 'va', 'av', 'aa' (linear, angular: "
                      "v = velocity, a = acceleration)");
   return {one(kind[0]), one(kind[1])};
@@ -147,7 +150,8 @@ public:
     V x0, v0, am;
     A w0, alpha;
     Orientation<D> q0;
-    bool lin_on = false, ang_on = false;
+    bool lin_on = false, ang_on = false;      // some component prescribed during the step
+    std::array<bool, 3> lin_act{}, ang_act{}; // which components (2D angular: the first)
   };
 
   std::vector<Group> groups{Group{"all", true, {}, {}}};
@@ -260,7 +264,8 @@ public:
       if (!c.f.active(t)) continue;
       const double v = c.f.value(t);
       if (!(v >= 0.0))
-        throw InputError("fixed temperature: T = " + to_text(v) + " K at t = " + to_text(t) +
+        throw InputError("Simulation::fix_temperature (group '" + groups[c.group].name +
+                         "'): T = " + to_text(v) + " K at t = " + to_text(t) +
                          " s is invalid; valid range: [0, inf) K");
       for (const auto i : members[c.group])
         p.temperature[i] = v;
@@ -297,8 +302,15 @@ public:
       c.v0 = p.velocity[i];
       c.w0 = p.omega[i];
       c.q0 = p.orientation[i];
-      c.lin_on = c.linear >= 0 && linear_motion[static_cast<std::size_t>(c.linear)].f.active(tm);
-      c.ang_on = c.angular >= 0 && angular_motion[static_cast<std::size_t>(c.angular)].f.active(tm);
+      // each component is prescribed while its own function is active, free otherwise
+      c.lin_act = c.linear >= 0
+                      ? active_components(linear_motion[static_cast<std::size_t>(c.linear)].f, tm)
+                      : std::array<bool, 3>{};
+      c.ang_act = c.angular >= 0
+                      ? active_components(angular_motion[static_cast<std::size_t>(c.angular)].f, tm)
+                      : std::array<bool, 3>{};
+      c.lin_on = c.lin_act[0] || c.lin_act[1] || c.lin_act[2];
+      c.ang_on = c.ang_act[0] || c.ang_act[1] || c.ang_act[2];
       if (c.lin_on) {
         const auto& m = linear_motion[static_cast<std::size_t>(c.linear)];
         if (m.kind == MotionKind::acceleration) c.am = m.f.value(tm);
@@ -320,15 +332,18 @@ public:
       const auto i = c.i;
       if (c.lin_on) {
         const auto& m = linear_motion[static_cast<std::size_t>(c.linear)];
+        V x, v;
         if (m.kind == MotionKind::velocity) {
           const V vm = m.f.value(tm);
-          p.position[i] = c.x0 + dt * vm;
-          p.velocity[i] = half ? vm : V(m.f.value(t1));
+          x = c.x0 + dt * vm;
+          v = half ? vm : V(m.f.value(t1));
         } else {
           const V v1 = c.v0 + dt * c.am;
-          p.position[i] = c.x0 + (0.5 * dt) * (c.v0 + v1);
-          p.velocity[i] = half ? V(c.v0 + (0.5 * dt) * c.am) : v1;
+          x = c.x0 + (0.5 * dt) * (c.v0 + v1);
+          v = half ? V(c.v0 + (0.5 * dt) * c.am) : v1;
         }
+        p.position[i] = blend(x, V(p.position[i]), c.lin_act);
+        p.velocity[i] = blend(v, V(p.velocity[i]), c.lin_act);
       }
       if (c.ang_on) {
         const auto& m = angular_motion[static_cast<std::size_t>(c.angular)];
@@ -340,9 +355,11 @@ public:
           wm = c.w0 + (0.5 * dt) * c.alpha;
           w1 = c.w0 + dt * c.alpha;
         }
+        // free components turn at the rate the integrator gave them
+        const A w = blend(wm, A(p.omega[i]), c.ang_act);
         p.orientation[i] = c.q0;
-        rotate(p.orientation[i], wm, dt);
-        p.omega[i] = half ? wm : w1;
+        rotate(p.orientation[i], w, dt);
+        p.omega[i] = blend(half ? wm : w1, A(p.omega[i]), c.ang_act);
       }
       restrain_velocity(p, c);
     }
@@ -356,11 +373,13 @@ public:
       const auto i = c.i;
       if (c.lin_on) {
         const auto& m = linear_motion[static_cast<std::size_t>(c.linear)];
-        p.velocity[i] = m.kind == MotionKind::velocity ? V(m.f.value(t1)) : V(c.v0 + dt * c.am);
+        const V v = m.kind == MotionKind::velocity ? V(m.f.value(t1)) : V(c.v0 + dt * c.am);
+        p.velocity[i] = blend(v, V(p.velocity[i]), c.lin_act);
       }
       if (c.ang_on) {
         const auto& m = angular_motion[static_cast<std::size_t>(c.angular)];
-        p.omega[i] = m.kind == MotionKind::velocity ? A(value_of(m.f, t1)) : A(c.w0 + dt * c.alpha);
+        const A w = m.kind == MotionKind::velocity ? A(value_of(m.f, t1)) : A(c.w0 + dt * c.alpha);
+        p.omega[i] = blend(w, A(p.omega[i]), c.ang_act);
       }
       restrain_velocity(p, c);
     }
@@ -373,15 +392,17 @@ public:
     for (const auto& c : controls) {
       if (c.lin_on) {
         const auto& m = linear_motion[static_cast<std::size_t>(c.linear)];
-        vf[c.i] = m.kind == MotionKind::velocity ? V(m.f.value(t + dt)) : V(c.v0 + dt * c.am);
+        const V v = m.kind == MotionKind::velocity ? V(m.f.value(t + dt)) : V(c.v0 + dt * c.am);
+        vf[c.i] = blend(v, V(vf[c.i]), c.lin_act);
       } else if (!c.lin.empty()) {
         vf[c.i] = project_out(V(vf[c.i]), c.lin);
       }
       if (wf) {
         if (c.ang_on) {
           const auto& m = angular_motion[static_cast<std::size_t>(c.angular)];
-          (*wf)[c.i] =
+          const A w =
               m.kind == MotionKind::velocity ? A(value_of(m.f, t + dt)) : A(c.w0 + dt * c.alpha);
+          (*wf)[c.i] = blend(w, A((*wf)[c.i]), c.ang_act);
         } else {
           restrain_angular((*wf)[c.i], c);
         }
@@ -391,6 +412,29 @@ public:
 
 private:
   static A value_of(const AF& f, double t) { return f.value(t); }
+
+  /// Which components of a motion history are active at t.
+  template <int N>
+  static std::array<bool, 3> active_components(const VectorTimeFunction<N>& f, double t) {
+    std::array<bool, 3> a{};
+    for (int k = 0; k < N; ++k)
+      a[static_cast<std::size_t>(k)] = f.component_active(k, t);
+    return a;
+  }
+  static std::array<bool, 3> active_components(const TimeFunction& f, double t) {
+    return {f.active(t), false, false};
+  }
+  /// The prescribed value in the active components, the free one in the others.
+  template <int N>
+  static Vec<N> blend(const Vec<N>& prescribed, const Vec<N>& free, const std::array<bool, 3>& on) {
+    Vec<N> v = free;
+    for (int k = 0; k < N; ++k)
+      if (on[static_cast<std::size_t>(k)]) v[k] = prescribed[k];
+    return v;
+  }
+  static double blend(double prescribed, double free, const std::array<bool, 3>& on) {
+    return on[0] ? prescribed : free;
+  }
 
   static void restrain_angular(A& w, const Control& c) {
     if constexpr (D == 2) {
@@ -407,10 +451,10 @@ private:
   }
 
   void build_controls(const std::vector<std::int64_t>& id) {
-    // The per-step state (x0, v0, ..., lin_on, ang_on, set by save() and used by drift(),
-    // predict() and finish()) belongs to the particle, not to its index: velocity Verlet re-sorts
-    // the particles at a neighbour-list rebuild between save() and finish(), and the refresh
-    // that follows must not drop it, so it is carried over by id.
+    // The per-step state (x0, v0, ..., lin_on, ang_on, lin_act, ang_act, set by save() and used by
+    // drift(), predict() and finish()) belongs to the particle, not to its index: velocity Verlet
+    // re-sorts the particles at a neighbour-list rebuild between save() and finish(), and the
+    // refresh that follows must not drop it, so it is carried over by id.
     std::vector<Control> old = std::move(controls);
     std::sort(old.begin(), old.end(),
               [](const Control& a, const Control& b) { return a.id < b.id; });
@@ -454,6 +498,8 @@ private:
       c.q0 = it->q0;
       c.lin_on = it->lin_on;
       c.ang_on = it->ang_on;
+      c.lin_act = it->lin_act;
+      c.ang_act = it->ang_act;
     }
   }
 

@@ -262,6 +262,11 @@ public:
     return false;
   }
 
+  /// True if component i (with `along`: every component, by the magnitude) is active at t.
+  bool component_active(int i, double t) const noexcept {
+    return f_[along_ ? 0 : static_cast<std::size_t>(i)].active(t);
+  }
+
   /// The vector at t, each component 0 while its function is inactive.
   Vec<D> operator()(double t) const noexcept {
     if (along_) return direction_ * f_[0](t);

@@ -10,7 +10,11 @@
 /// \code
 /// auto sim = make_simulation();                 // the program's own set-up
 /// if (restart) grain::io::load_checkpoint(sim, "run.ckpt");
-/// sim.run(1.0, grain::io::every(0.1, grain::io::checkpoint("run.ckpt")));
+/// auto history = grain::io::history("history.csv");
+/// history.resume = restart;                     // keeps the rows written before the restart
+/// sim.run(1.0 - sim.time(),                     // run() adds to the current time: to t = 1 s
+///         grain::io::every(0.01, history, grain::io::vtk("bed", {.resume = restart})),
+///         grain::io::every(0.1, grain::io::checkpoint("run.ckpt")));
 /// \endcode
 ///
 /// Format (native byte order, doubles as IEEE 754): the magic "GRAINCKP", the format version
@@ -22,11 +26,13 @@
 
 #include <grain/core/error.hpp>
 #include <grain/io/console.hpp>
+#include <grain/io/write_error.hpp>
 #include <grain/simulation.hpp>
 #include <grain/version.hpp>
 
 #include <Eigen/Geometry>
 
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -190,8 +196,12 @@ private:
       s_.read(static_cast<char*>(p), static_cast<std::streamsize>(n));
       if (!s_) corrupt("the data");
     } else {
+      errno = 0;
       s_.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
-      if (!s_) throw std::runtime_error("grain::io::save_checkpoint: cannot write '" + path_ + "'");
+      if (!s_)
+        throw write_error("grain::io::save_checkpoint", path_, errno,
+                          "; the file is removed and a checkpoint under the final name is left "
+                          "as it was");
     }
   }
   void check_size(std::uint64_t n, std::uint64_t each) {
@@ -249,8 +259,10 @@ inline constexpr char end_mark[8] = {'G', 'R', 'A', 'I', 'N', 'E', 'N', 'D'};
 } // namespace detail
 
 /// Writes the run state of an initialised simulation (one that has run, or whose initialize() was
-/// called) to `path`. The file is written to `path`.tmp and renamed, so an interrupted write never
-/// leaves a broken checkpoint under the final name.
+/// called) to `path`. The file is written to `path`.tmp, closed and checked, and only then renamed
+/// to `path`, so that neither an interrupted write nor a failed one (a full disk) leaves a broken
+/// checkpoint under the final name: a failed write removes the temporary file, keeps the previous
+/// checkpoint at `path` and throws a std::runtime_error naming the file and the reason.
 template <class Sim>
 void save_checkpoint(const Sim& sim, const std::string& path) {
   if (!sim.initialized())
@@ -259,10 +271,11 @@ void save_checkpoint(const Sim& sim, const std::string& path) {
   const std::filesystem::path p(path);
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
   const std::string tmp = path + ".tmp";
-  {
+  try {
+    errno = 0;
     std::ofstream o(tmp, std::ios::binary);
-    if (!o) throw std::runtime_error("grain::io::save_checkpoint: cannot open '" + tmp + "'");
-    detail::Archive<false> ar(o, path);
+    if (!o) throw detail::write_error("grain::io::save_checkpoint", tmp, errno);
+    detail::Archive<false> ar(o, tmp);
     char m[8];
     std::memcpy(m, detail::magic, 8);
     std::uint32_t version = checkpoint_format_version;
@@ -273,6 +286,18 @@ void save_checkpoint(const Sim& sim, const std::string& path) {
     const_cast<Sim&>(sim).serialize(ar); // writing only reads the state
     std::memcpy(m, detail::end_mark, 8);
     ar(m);
+    // the last bytes reach the file when it is closed: only a stream still good after the close
+    // holds the whole checkpoint
+    errno = 0;
+    o.flush();
+    if (o) o.close();
+    if (!o)
+      throw detail::write_error("grain::io::save_checkpoint", tmp, errno,
+                                "; the file is removed and '" + path + "' is left as it was");
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
   }
   std::filesystem::rename(tmp, path);
 }

@@ -10,11 +10,12 @@
 ///
 /// | frequency | calls each action |
 /// |---|---|
-/// | `every(interval, actions...)` | at the start of a run, every `interval` [s] of simulated time after it, and at the end |
+/// | `every(interval, actions...)` | at the start of a run (t0), every `interval` [s] of simulated time after it (the k-th output at the first step that reaches t0 + k interval, see Every), and at the end |
 /// | `every_steps(n, actions...)` | at the start of a run, every n steps after it, and at the end |
 ///
 /// Neither calls its actions twice at one step: not when a run starts where the previous run with
 /// the same object ended (no duplicate row at the junction), nor when the end falls on an output.
+/// A line of `print` that cannot be written throws std::runtime_error (the file and the reason).
 ///
 /// \code
 /// sim.run(1.0, io::summary(), io::progress(),
@@ -24,11 +25,13 @@
 
 #include <grain/core/error.hpp>
 #include <grain/io/csv.hpp>
+#include <grain/io/write_error.hpp>
 
+#include <algorithm>
 #include <boost/hana/for_each.hpp>
 #include <boost/hana/tuple.hpp>
 #include <boost/hana/type.hpp>
-#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -233,18 +236,27 @@ inline Progress progress(double seconds = 2.0, std::FILE* out = stderr) {
   return Progress{seconds, out};
 }
 
-/// Calls each action at t = start, start + interval, ... (simulated time) and at the end.
+/// Calls each action at t = start, start + interval, ... (simulated time) and at the end. The
+/// k-th output is due at t0 + k interval, t0 the time at the start of the run (the due times are
+/// computed, not summed, so that they do not drift over a long run); it runs at the first step
+/// whose time reaches the due time less `tolerance` steps (a margin for the rounding of the
+/// time, far below one step: an interval that is a whole number of steps gives one output every
+/// that many steps, any other interval an output at the first step at or after each due time).
 template <class... Actions>
 struct Every {
   double interval;
   std::tuple<Actions...> actions;
-  double next = 0.0;
+  double t0 = 0.0;     ///< time at the start of the run (due time number 0)
+  long due = 0;        ///< number of the next due time, t0 + due * interval
   long last_step = -1; ///< step of the last call (no second call at the same step)
+  /// Share of a time step by which a step may fall short of a due time and still reach it.
+  static constexpr double tolerance = 1e-3;
 
   template <class Sim>
   void start(const Sim& sim) {
     std::apply([&](auto&... a) { (detail::start_action(a, sim), ...); }, actions);
-    next = sim.time();
+    t0 = sim.time();
+    due = 0;
     if (last_step == sim.step_count()) { // continues a run that ended with a call
       advance(sim);
       return;
@@ -253,7 +265,7 @@ struct Every {
   }
   template <class Sim>
   void operator()(const Sim& sim) {
-    if (sim.time() + 1e-9 * sim.time_step() < next) return;
+    if (!reached(sim, due)) return;
     fire(sim);
     advance(sim);
   }
@@ -265,8 +277,21 @@ struct Every {
 
 private:
   template <class Sim>
+  bool reached(const Sim& sim, long k) const {
+    return sim.time() + tolerance * sim.time_step() >= t0 + static_cast<double>(k) * interval;
+  }
+  /// Moves `due` to the first due time after the current step.
+  template <class Sim>
   void advance(const Sim& sim) {
-    while (next <= sim.time() + 1e-9 * sim.time_step()) next += interval;
+    // a first guess from the quotient (an interval below the time step skips many due times),
+    // then exact by comparison
+    const long lo = due + 1;
+    const double q = std::floor((sim.time() - t0) / interval);
+    due = std::max(lo, q > 0.0 ? static_cast<long>(q) : 0L);
+    while (due > lo && !reached(sim, due - 1))
+      --due;
+    while (reached(sim, due))
+      ++due;
   }
   template <class Sim>
   void fire(const Sim& sim) {
@@ -395,11 +420,17 @@ private:
     if (cell.size() < widths_[k]) line.append(widths_[k] - cell.size(), ' ');
     line += cell;
   }
+  /// Writes a line and flushes it; throws if it did not reach the file or stream.
   void emit(const std::string& line) const {
     std::FILE* f = file_ ? file_.get() : out;
-    std::fputs(line.c_str(), f);
-    std::fputc('\n', f);
-    std::fflush(f);
+    errno = 0;
+    if (std::fputs(line.c_str(), f) == EOF || std::fputc('\n', f) == EOF || std::fflush(f) == EOF)
+      throw detail::write_error("grain::io::print", target(), errno);
+  }
+  /// The file or stream written, for messages.
+  std::string target() const {
+    if (file_) return path;
+    return out == stdout ? "stdout" : out == stderr ? "stderr" : "the given FILE* stream";
   }
 };
 

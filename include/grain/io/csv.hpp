@@ -5,7 +5,9 @@
 /// stops halfway leaves a valid file up to the last row written. Values are written with 17
 /// significant digits in the "C" locale; a missing value (a particle that is not active, the mean
 /// over an empty group) is written `nan` (never an empty cell, so that every cell parses as a
-/// number, e.g. with Python's float()).
+/// number, e.g. with Python's float()). A row that cannot be written (a full disk) throws
+/// std::runtime_error naming the writer, the file and the reason. A writer's `resume` member
+/// continues the file of a run restarted from a checkpoint (see CsvWriter::resume).
 ///
 /// \code
 /// sim.run(1.0, io::every(1e-2, io::history("out/global.csv", io::lifecycle_columns()),
@@ -71,9 +73,11 @@
 
 #include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
+#include <grain/io/write_error.hpp>
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <concepts>
 #include <cstddef>
@@ -744,11 +748,60 @@ struct DissipatedEnergyColumn {
 /// `dissipated_energy()`; no column otherwise.
 inline DissipatedEnergyColumn dissipated_energy_column() { return {}; }
 
+namespace detail {
+
+/// The number of bytes at the start of the CSV file `path` that a writer resuming at step `step`
+/// keeps: its header, if it is `header`, and the complete rows of the steps before `step` that
+/// follow it (0: no such file, or nothing to keep). A file with another header but rows to keep
+/// is an InputError.
+inline std::uintmax_t resumable_bytes(const std::string& path, const std::string& header,
+                                      long step) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return 0;
+  std::string head(header.size(), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const bool same = head == header;
+  if (!same) { // the first line of the file, to look at its first row
+    in.clear();
+    in.seekg(0);
+    std::getline(in, head);
+  }
+  // the step of a complete row, the second cell ("time,step,..."); -1 if it is none
+  const auto step_of = [](const std::string& row) -> long {
+    const auto a = row.find(',');
+    if (a == std::string::npos) return -1;
+    const auto b = std::min(row.find(',', a + 1), row.size());
+    long s = -1;
+    const auto [end, err] = std::from_chars(row.data() + a + 1, row.data() + b, s);
+    return err == std::errc{} && end == row.data() + b ? s : -1;
+  };
+  std::uintmax_t keep = same ? header.size() : 0;
+  for (std::string row; std::getline(in, row);) {
+    if (in.eof()) break; // a last row without its line break is incomplete
+    const long s = step_of(row);
+    if (s < 0 || s >= step) break;
+    if (!same)
+      throw InputError("grain::io::csv: resume of '" + path + "': header = '" + head +
+                       "' is invalid; valid: '" + header.substr(0, header.size() - 1) +
+                       "' (the columns of this writer), or a file without rows before step " +
+                       std::to_string(step));
+    keep += row.size() + 1;
+  }
+  return keep;
+}
+
+} // namespace detail
+
 /// The writer behind `io::csv` and `io::history`.
 template <bool Global, class... Columns>
 struct CsvWriter {
   std::string path;
   std::tuple<Columns...> columns;
+  /// Continue an existing file (a run restarted from a checkpoint): keep its header and its rows
+  /// of the steps before the step at which the writer starts, drop the later ones and append.
+  /// Without such rows (or without the file) the file is written anew.
+  bool resume = false;
   std::shared_ptr<std::ofstream> out{};
   std::size_t width = 0;         ///< number of cells after time and step
   std::vector<double> cells_{};  ///< one row's cells
@@ -766,15 +819,21 @@ struct CsvWriter {
     }
     detail::names_of_all(columns, sim, names);
     width = names.size() - 2;
+    std::string header;
+    for (std::size_t k = 0; k < names.size(); ++k)
+      header += (k ? "," : "") + detail::quoted(names[k]);
+    header += '\n';
     const std::filesystem::path p(path);
     if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    auto file = std::make_shared<std::ofstream>(path);
+    const std::uintmax_t keep =
+        resume ? detail::resumable_bytes(path, header, sim.step_count()) : 0;
+    if (keep > 0) std::filesystem::resize_file(path, keep);
+    auto file = keep > 0 ? std::make_shared<std::ofstream>(path, std::ios::app)
+                         : std::make_shared<std::ofstream>(path);
     if (!*file) throw std::runtime_error("grain::io::csv: cannot open '" + path + "' for writing");
     file->imbue(std::locale::classic());
-    for (std::size_t k = 0; k < names.size(); ++k)
-      *file << (k ? "," : "") << detail::quoted(names[k]);
-    *file << '\n';
-    file->flush();
+    if (keep == 0) *file << header;
+    detail::flush_or_throw(*file, "grain::io::csv", path);
     out = std::move(file);
   }
 
@@ -810,7 +869,7 @@ struct CsvWriter {
     }
     row << '\n';
     *out << row.str();
-    out->flush();
+    detail::flush_or_throw(*out, "grain::io::csv", path);
   }
 };
 

@@ -25,7 +25,7 @@
 /// | `omega` | VECTORS double (2D: (0, 0, w)) | rad/s |
 /// | `force` | VECTORS double, total force of the last step | N |
 /// | `torque` | VECTORS double (2D: (0, 0, T)), total torque of the last step | N m |
-/// | `mass` | SCALARS double (2D: of a disk of length `thickness`) | kg |
+/// | `mass` | SCALARS double, the particle's mass as its shape defines it (2D: a disk of length `thickness`, or a sphere with `Disk{.sphere_mass = true}`) | kg |
 /// | `orientation` | 3D: SCALARS double 4, the unit quaternion (w, x, y, z) that turns body axes into lab axes (ParaView's glyph orientation mode "Quaternion"); 2D: SCALARS double, the angle | -, rad |
 /// | `material` | SCALARS int, index into the material table | - |
 /// | `temperature` | SCALARS double (thermal simulations only) | K |
@@ -43,6 +43,11 @@
 /// files are unchanged. `io::vtk(prefix, plane_size, contacts)` is the writer of every field of
 /// every particle in ASCII.
 ///
+/// With `resume = true` the writer continues the series of a run restarted from a checkpoint: it
+/// keeps the entries of the series files before the time at which it starts, numbers its files
+/// on after the last of them and removes the files of the later entries. A file that cannot be
+/// written throws std::runtime_error naming the file and the reason.
+///
 /// Walls: lines in 2D, polygons in 3D, with cell data `wall` (the wall index) and, in thermal
 /// simulations, `conducts` and `temperature` [K]. Infinite planes are drawn as squares of side
 /// `plane_size` [m] around their point; circles as polygons of `circle_segments` sides. Contacts:
@@ -57,6 +62,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -66,14 +73,17 @@
 #include <grain/contact/frame.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
+#include <grain/io/write_error.hpp>
 #include <grain/walls/walls.hpp>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <locale>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -236,8 +246,9 @@ public:
 
   /// Flushes and closes the file; throws if anything could not be written.
   void close(const std::string& path) {
+    errno = 0;
     out_.close();
-    if (!out_) throw std::runtime_error("grain::io::vtk: cannot write '" + path + "'");
+    if (!out_) throw write_error("grain::io::vtk", path, errno);
   }
 
 private:
@@ -477,17 +488,45 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
 
 namespace detail {
 /// Rewrites `prefix_kind.vtk.series` (ParaView's file-series format) with one entry per file.
+/// Throws if the file could not be written.
 inline void write_series(const std::string& prefix, const char* kind,
                          const std::vector<std::pair<std::string, double>>& files) {
-  std::ofstream o(prefix + "_" + kind + ".vtk.series");
-  if (!o) throw std::runtime_error("grain::io::vtk: cannot write '" + prefix + "_" + kind +
-                                   ".vtk.series'");
+  const std::string path = prefix + "_" + kind + ".vtk.series";
+  errno = 0;
+  std::ofstream o(path);
+  if (!o) throw write_error("grain::io::vtk", path, errno);
   o.imbue(std::locale::classic());
   o << std::setprecision(17) << "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n";
   for (std::size_t k = 0; k < files.size(); ++k)
     o << "    { \"name\" : \"" << files[k].first << "\", \"time\" : " << files[k].second << " }"
       << (k + 1 < files.size() ? ",\n" : "\n");
   o << "  ]\n}\n";
+  errno = 0;
+  o.close();
+  if (!o) throw write_error("grain::io::vtk", path, errno);
+}
+/// The entries (file name, time) of `prefix_kind.vtk.series` as write_series writes them; none
+/// if there is no such file.
+inline std::vector<std::pair<std::string, double>> read_series(const std::string& prefix,
+                                                               const char* kind) {
+  std::vector<std::pair<std::string, double>> files;
+  std::ifstream in(prefix + "_" + kind + ".vtk.series");
+  if (!in) return files;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string name_key = "\"name\" : \"", time_key = "\"time\" : ";
+  for (std::size_t at = text.find(name_key); at != std::string::npos;
+       at = text.find(name_key, at)) {
+    const std::size_t a = at + name_key.size(), b = text.find('"', a);
+    const std::size_t t = b == std::string::npos ? b : text.find(time_key, b);
+    if (t == std::string::npos) break;
+    std::istringstream number(text.substr(t + time_key.size(), 32));
+    number.imbue(std::locale::classic());
+    double time = 0.0;
+    if (!(number >> time)) break;
+    files.emplace_back(text.substr(a, b - a), time);
+    at = t;
+  }
+  return files;
 }
 } // namespace detail
 
@@ -498,6 +537,10 @@ struct VtkOptions {
   Fields fields = io::fields::all;   ///< particle fields
   std::string group{};               ///< only this group's particles (and their contacts); "" = all
   VtkFormat format = VtkFormat::ascii; ///< of every file
+  /// Continue the series of an earlier run (a run restarted from a checkpoint): keep the entries
+  /// of its series files before the time at which the writer starts, go on numbering after them,
+  /// and remove the files of the later entries.
+  bool resume = false;
 };
 
 /// Output action: one particle file and one wall file (and contact file) per call, numbered
@@ -509,11 +552,13 @@ struct VtkWriter {
   std::vector<std::pair<std::string, double>> particle_files{}, wall_files{}, contact_files{};
 
   /// Checks the fields and the group when the run starts, before any file is written (called
-  /// by Simulation::run and steps, and by io::every for the actions it wraps).
+  /// by Simulation::run and steps, and by io::every for the actions it wraps); with
+  /// `options.resume`, a writer that has written nothing yet takes up the earlier series.
   template <class Sim>
-  void start(const Sim& sim) const {
+  void start(const Sim& sim) {
     detail::resolve_fields<Sim>(options.fields, "grain::io::vtk");
     if (!options.group.empty()) (void)sim.group(options.group);
+    if (options.resume && count == 0 && particle_files.empty()) resume(sim);
   }
 
   template <class Sim>
@@ -538,6 +583,44 @@ struct VtkWriter {
                          options.group);
       contact_files.emplace_back(stem + "_contacts_" + num.str() + ".vtk", sim.time());
       detail::write_series(prefix, "contacts", contact_files);
+    }
+  }
+
+private:
+  /// Keeps the series entries of the frames before the current time (half a step's margin: the
+  /// frame of the current step is written again) and numbers on after the last one kept.
+  template <class Sim>
+  void resume(const Sim& sim) {
+    const double before = sim.time() - 0.5 * sim.time_step();
+    const std::filesystem::path base(prefix);
+    const std::string stem = base.filename().string();
+    auto take_up = [&](const char* kind, std::vector<std::pair<std::string, double>>& files) {
+      files = detail::read_series(prefix, kind);
+      if (files.empty()) return;
+      const auto later = std::find_if(files.begin(), files.end(),
+                                      [&](const auto& f) { return !(f.second < before); });
+      for (auto f = later; f != files.end(); ++f) // only files this writer names
+        if (f->first.rfind(stem + "_" + kind + "_", 0) == 0 &&
+            f->first.find('/') == std::string::npos) {
+          std::error_code ignored;
+          std::filesystem::remove(base.parent_path() / f->first, ignored);
+        }
+      files.erase(later, files.end());
+      detail::write_series(prefix, kind, files); // the entries kept
+    };
+    take_up("particles", particle_files);
+    take_up("walls", wall_files);
+    take_up("contacts", contact_files);
+    // the next number: after that of the last particle file kept
+    count = static_cast<int>(particle_files.size());
+    if (!particle_files.empty()) {
+      const std::string& last = particle_files.back().first;
+      const std::size_t digits = stem.size() + std::string("_particles_").size();
+      int n = 0;
+      const auto [end, err] = std::from_chars(last.data() + std::min(digits, last.size()),
+                                              last.data() + last.size(), n);
+      if (err == std::errc{} && std::string_view(end, last.data() + last.size()) == ".vtk")
+        count = n + 1;
     }
   }
 };
