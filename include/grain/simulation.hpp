@@ -1354,7 +1354,7 @@ public:
         double q = 0.0;
         if constexpr (thermal) {
           const double tj = wall ? walls_[j].temperature : p.temperature[j];
-          if (!wall || walls_[j].conducts()) {
+          if (!wall || wall_conducts(j)) {
             const double H =
                 Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius);
             q = H * (tj - p.temperature[i]);
@@ -1419,7 +1419,7 @@ public:
         }
         for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
           const auto w = list_.walls[e];
-          if (!walls_[w].conducts()) continue;
+          if (!wall_conducts(w)) continue;
           double H = 0.0;
           if (touching_wall(i, w, g)) {
             at_rest(g);
@@ -1692,6 +1692,12 @@ private:
     if (SearchT::due(params_.search, steps_since_rebuild_, far)) rebuild();
   }
 
+  /// True if heat crosses wall w: it has a temperature and its material a conductivity above 0
+  /// (a wall of zero conductivity insulates, for direct and indirect conduction models alike).
+  bool wall_conducts(std::size_t w) const {
+    return walls_[w].conducts() && materials_[walls_[w].options.material].conductivity > 0.0;
+  }
+
   /// Throws NumericalError naming the first particle whose position (or temperature) is not
   /// finite. A displacement that is not finite counts as infinite, so such a particle forces a
   /// rebuild, which calls this before sorting by cell.
@@ -1947,9 +1953,13 @@ private:
             p.radius[i] = y;
             set_mass(density * shape_.volume(y));
             radius = true;
+            thermal_change = true; // heat capacity and conductances change
           }
           break;
-        case Property::density: set_mass(y * vol); break;
+        case Property::density:
+          set_mass(y * vol);
+          thermal_change = true; // the heat capacity m c changes
+          break;
         case Property::heat_capacity:
           thermal_change = true;
           if constexpr (thermal) {
@@ -1985,12 +1995,13 @@ private:
         // the conduction limit moves with the conductivities and heat capacities
         const double limit = conduction_time_step();
         if (dt_ > limit)
-          throw InputError("Simulation: time_step = " + detail::to_text(dt_) +
-                           " s is above the conduction limit " + detail::to_text(limit) +
-                           " s reached at t = " + detail::to_text(time_) +
-                           " s by a variable conductivity or heat capacity; valid range: (0, " +
-                           detail::to_text(limit) +
-                           "] s (give a smaller time_step or auto_time_step_factor)");
+          throw InputError(
+              "Simulation: time_step = " + detail::to_text(dt_) +
+              " s is above the conduction limit " + detail::to_text(limit) +
+              " s reached at t = " + detail::to_text(time_) +
+              " s by a variable property (conductivity, heat capacity, density or radius); valid "
+              "range: (0, " +
+              detail::to_text(limit) + "] s (give a smaller time_step or auto_time_step_factor)");
       }
     }
     return any;
@@ -2297,7 +2308,7 @@ private:
         if constexpr (!Contact::template stateless<D>) wall_history_[e] = History{};
         wall_loads_[e] = WallLoad{};
         if constexpr (Contact::indirect) {
-          if (heat && walls_[w].conducts())
+          if (heat && wall_conducts(w))
             p.heat_rate[i] +=
                 gap_wall_conductance(i, w, e, g) * (walls_[w].temperature - p.temperature[i]);
         }
@@ -2324,7 +2335,7 @@ private:
       }
       if constexpr (thermal) {
         if (heat) {
-          if (walls_[w].conducts()) {
+          if (wall_conducts(w)) {
             const double H =
                 Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_wall(e));
             p.heat_rate[i] += H * (walls_[w].temperature - p.temperature[i]);

@@ -297,6 +297,30 @@ TEST_CASE("clumps in 2D: disks and sphere-mass disks") {
   }
 }
 
+TEST_CASE("clumps: a shape made by hand without shares or inertia is refused") {
+  // ClumpShape is a plain struct: one filled in by hand must have a share per member summing to
+  // 1 and (2D) a positive moment of inertia, or the members' masses would be read past the end
+  Sim2::Params prm;
+  prm.time_step = 1e-5;
+  Sim2 sim(prm, Disk{.thickness = 2e-3});
+  const auto m = sim.add_material(stone);
+  auto& cl = sim.stage<Clumps<2>>();
+  ClumpShape<2> s;
+  s.offsets = {Vec2(0, 0)};
+  s.radii = {1e-3};
+  s.moments.measure = 3.14e-6;
+  auto e = test::error_of([&] { cl.add(sim, s, {.material = m, .name = "hand"}); });
+  CHECK(test::has(e, "Clump 'hand': shares = 0 is invalid; valid range: 1 (one per member"));
+  s.share = {0.5};
+  e = test::error_of([&] { cl.add(sim, s, {.material = m, .name = "hand"}); });
+  CHECK(test::has(e, "Clump 'hand': sum of the shares = 0.5 is invalid"));
+  s.share = {1.0};
+  e = test::error_of([&] { cl.add(sim, s, {.material = m, .name = "hand"}); });
+  CHECK(test::has(e, "Clump 'hand': moment of inertia = 0 is invalid; valid range: (0, inf)"));
+  CHECK(cl.size() == 0);
+  CHECK(sim.size() == 0);
+}
+
 TEST_CASE("clumps: a checkpoint resumes bit for bit; a different clump count is refused") {
   auto setup = [](Sim3& sim, int clumps) {
     const auto m = sim.add_material(stone);

@@ -7,8 +7,9 @@
 // (area::None) unless stated; the lumped model C_i dT_i/dt = sum_j H_ij (T_j - T_i) then holds
 // exactly for the simulation, and forward Euler gives dT_n = dT_0 (1 - dt/tau)^n.
 
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../errors.hpp"
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/conduction/batchelor_obrien.hpp>
 
@@ -447,6 +448,62 @@ TEST_CASE("the seed's resting_single model: direct + surrounding-layer conductio
   sim.run(60.0); // 35 tau
   const double steady = ((h_bob + h_layer) * 400 + hs * 250) / (h_bob + h_layer + hs);
   CHECK(q.temperature[0] == grain::test::approx(steady).epsilon(1e-9));
+}
+
+TEST_CASE("a wall material without conductivity insulates for an indirect model too") {
+  // the set-up of the resting_single case (verification 4.11) without convection: direct
+  // (Batchelor-O'Brien) + surrounding-layer conduction from a wall at 400 K into a sphere at
+  // 300 K. With the wall's material at k = 1000 W/(m K) the heat rate is (H_BOB + H_layer)
+  // 100 K (1e-12); with a wall material of zero conductivity no heat crosses the wall (exactly 0),
+  // although the surrounding layer itself does not involve the wall's conductivity.
+  using Contact =
+      Interaction<normal::Hertz<>, tangent::None, rolling::None,
+                  conduction::Combined<conduction::BatchelorOBrien, conduction::SurroundingLayer>,
+                  area::Geometric>;
+  using Sim = Simulation<Sphere, search::AllPairs, Contact>;
+  auto heat_rate = [](double wall_conductivity) {
+    Sim::Params p;
+    p.analysis = Analysis::thermal;
+    p.fluid = {.temperature = 250,
+               .density = 1.2,
+               .viscosity = 1.8e-5,
+               .conductivity = 10,
+               .heat_capacity = 1000};
+    p.time_step = 1e-3;
+    Sim sim(p);
+    const auto m = sim.add_material({.name = "resting_single",
+                                     .density = 30,
+                                     .young = 1e6,
+                                     .conductivity = 1000,
+                                     .heat_capacity = 20});
+    const auto w = sim.add_material({.name = "wall",
+                                     .density = 30,
+                                     .young = 1e6,
+                                     .conductivity = wall_conductivity,
+                                     .heat_capacity = 20});
+    sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = w, .temperature = 400.0});
+    sim.add_particle({.position = {0, 0, 0.99}, .radius = 1.0, .material = m, .temperature = 300});
+    sim.step();
+    return sim.particles().heat_rate[0];
+  };
+  const double a = std::sqrt(1 - 0.99 * 0.99);
+  const double h_layer = conduction::SurroundingLayer::wall(1.0, 0.99, a, 10.0, {});
+  CHECK(heat_rate(1000.0) == grain::test::approx((4 * 500 * a + h_layer) * 100).epsilon(1e-12));
+  CHECK(heat_rate(0.0) == 0.0);
+}
+
+TEST_CASE("a density table that lowers the conduction limit below the time step stops the run") {
+  // section 4.1's pair (C = 8.37758 J/K, H = 1.41421e-3 W/K: limit C / H = 5924 s) at dt = 3000 s;
+  // the density falls to 250 kg/m^3 after t = 3001 s, so C and the limit fall tenfold (592 s).
+  // Forward Euler would then multiply the temperature difference by 1 - 2 dt H / C = -9.1 per
+  // step; the update that lowers the density raises InputError instead.
+  auto sim = two_particles<Sim3>(3000.0);
+  sim.add_variable_property({"all", Property::density, Variable::time,
+                             Table({{0.0, 2500.0}, {3001.0, 2500.0}, {3002.0, 250.0}})});
+  const auto e = grain::test::error_of([&] { sim.steps(4); });
+  CHECK(grain::test::has(e, "above the conduction limit"));
+  CHECK(grain::test::has(e, "density"));
+  CHECK(sim.time() == 6000.0); // stopped at the update of t = 6000 s
 }
 
 TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, with the "

@@ -562,6 +562,14 @@ TEST_CASE("obstacle input errors name the obstacle, the value and the valid rang
   e = message(m, o);
   CHECK(has(e, "Obstacle 'hopper': vertex 3 = (0, nan, 0) is invalid; valid range: finite"));
 
+  // the same corner in a list of triangles: a vertex of its own, rejected with its coordinates
+  // (not sorted with the others: NaN has no order)
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<walls::Triangle> listed{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, nan, 0)},
+                                            {Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}};
+  e = error_of([&] { add_obstacle(sim, listed, o); });
+  CHECK(has(e, "Obstacle 'hopper': vertex 2 = (0, nan, 0) is invalid; valid range: finite"));
+
   ObstacleOptions bad = o;
   bad.material = 3;
   e = message(square2(), bad);

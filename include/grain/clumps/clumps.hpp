@@ -36,6 +36,7 @@
 #include <grain/core/vector.hpp>
 #include <grain/simulation.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -128,9 +129,22 @@ public:
     detail::require(shape.offsets.size() > 0 && shape.offsets.size() == shape.radii.size(), obj,
                     "members", shape.offsets.size(),
                     "at least one (make the shape with clump_shape)");
+    detail::require(shape.share.size() == shape.offsets.size(), obj, "shares", shape.share.size(),
+                    std::to_string(shape.offsets.size()) +
+                        " (one per member; make the shape with clump_shape)");
+    double shares = 0.0;
+    bool valid = true;
+    for (const double w : shape.share) {
+      valid = valid && std::isfinite(w) && w >= 0.0;
+      shares += w;
+    }
+    detail::require(valid && std::abs(shares - 1.0) <= 1e-9, obj, "sum of the shares", shares,
+                    "1 within 1e-9, each share finite and >= 0 (make the shape with clump_shape)");
     const double rho = sim.materials()[at.material].density;
     const double mass = rho * shape.moments.measure;
     detail::require_positive(obj, "mass", mass);
+    if constexpr (D == 2)
+      detail::require_positive(obj, "moment of inertia", rho * shape.moments.inertia);
     const std::size_t c = size();
     if constexpr (D == 3) {
       bodies::RigidBody b;

@@ -26,11 +26,12 @@
 /// contact property are computed per contact from the particles' current properties (mixing
 /// rules of particles/material.hpp) and cached until the next update or neighbour-list rebuild.
 ///
-/// The time step is checked before the run against the extreme table values (largest Young's
-/// modulus and conductivity, smallest radius, density and heat capacity; the Poisson ratio is
-/// taken as the material's). The conduction limit depends on the contacts: it is checked again
-/// after each update of a conductivity or heat capacity, and a given time step above it stops
-/// the run with an InputError. A radius change rebuilds the neighbour list at that update.
+/// The automatic time step is chosen before the run from the extreme table values (largest
+/// Young's modulus and conductivity, smallest radius, density and heat capacity; the Poisson
+/// ratio is taken as the material's); a given time step is checked before the run against the
+/// current values. The conduction limit depends on the contacts: it is checked again after each
+/// update of a conductivity, heat capacity, density or radius, and a time step above it stops the
+/// run with an InputError. A radius change rebuilds the neighbour list at that update.
 
 #include <grain/core/error.hpp>
 #include <grain/core/table.hpp>

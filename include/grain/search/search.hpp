@@ -102,7 +102,10 @@ struct Grid {
     for (;;) {
       double total = 1.0;
       for (int d = 0; d < D; ++d) {
-        dims[d] = std::max<long>(1, static_cast<long>(std::floor((mx[d] - mn[d]) / cell)) + 1);
+        // at most 1e15 cells along an axis before the cast (a stray particle far away must not
+        // overflow the integer; the loop then coarsens the grid)
+        dims[d] = std::max<long>(
+            1, static_cast<long>(std::min(std::floor((mx[d] - mn[d]) / cell), 1e15)) + 1);
         total *= static_cast<double>(dims[d]);
       }
       if (total <= max_cells) break;
@@ -115,7 +118,9 @@ struct Grid {
       sorted[k] = dims[axis[k]];
   }
   long coord(const Vec<D>& p, int d) const {
-    return std::clamp<long>(static_cast<long>((p[d] - lo[d]) / cell), 0, dims[d] - 1);
+    // clamped before the cast: a particle outside the grid takes the nearest cell
+    return static_cast<long>(
+        std::clamp((p[d] - lo[d]) / cell, 0.0, static_cast<double>(dims[d] - 1)));
   }
   long index(const Vec<D>& p) const {
     long c = coord(p, axis[D - 1]);

@@ -40,6 +40,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <string>
@@ -127,12 +128,17 @@ inline TriangleMesh triangle_mesh(std::span<const Triangle> triangles) {
     for (const Vec3* p : {&t.a, &t.b, &t.c})
       corners.push_back({p->x(), p->y(), p->z()});
   seen.reserve(corners.size());
+  // a corner that is not finite stays a vertex of its own (not sorted: NaN does not order), and
+  // the mesh's check rejects it with its coordinates
   for (std::uint32_t k = 0; k < corners.size(); ++k)
-    seen.push_back({corners[k], k});
+    if (std::isfinite(corners[k][0]) && std::isfinite(corners[k][1]) &&
+        std::isfinite(corners[k][2]))
+      seen.push_back({corners[k], k});
   std::stable_sort(seen.begin(), seen.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
   // first appearance of each distinct point, then vertex numbers in that order
   std::vector<std::uint32_t> first(corners.size());
+  std::iota(first.begin(), first.end(), std::uint32_t{0});
   for (std::size_t k = 0; k < seen.size(); ++k)
     first[seen[k].second] =
         (k > 0 && seen[k].first == seen[k - 1].first) ? first[seen[k - 1].second] : seen[k].second;
