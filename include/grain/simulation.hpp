@@ -987,7 +987,10 @@ public:
     if constexpr (thermal) cond_.fix_temperatures(particles_, time_);
     const double critical = critical_time_step();
     if (params_.time_step > 0.0) {
-      if (params_.time_step > critical) {
+      // forward Euler of the temperatures is stable only strictly below the conduction limit
+      // (at it, the difference of two particles flips sign each step without decaying)
+      const bool at_conduction_limit = heats() && params_.time_step == conduction_time_step();
+      if (params_.time_step > critical || at_conduction_limit) {
         std::string why;
         if (moves())
           why += "Rayleigh time " + detail::to_text(rayleigh_time()) +
@@ -996,8 +999,10 @@ public:
           why += std::string(why.empty() ? "" : ", ") + "conduction limit min C_i / sum H_ij = " +
                  detail::to_text(conduction_time_step()) + " s";
         throw InputError("Simulation: time_step = " + detail::to_text(params_.time_step) +
-                         " s is above the stable limit; valid range: (0, " +
-                         detail::to_text(critical) + "] s (" + why + ")");
+                         (at_conduction_limit ? " s is at the conduction limit"
+                                              : " s is above the stable limit") +
+                         "; valid range: (0, " + detail::to_text(critical) +
+                         (at_conduction_limit ? ") s (" : "] s (") + why + ")");
       }
       dt_ = params_.time_step;
     } else {

@@ -122,6 +122,23 @@ TEST_CASE("clump mass properties: unions of spheres and disks against closed for
             "one radius per member"));
 }
 
+TEST_CASE("clump moments do not depend on where the clump is made") {
+  // the same three spheres made at the origin and 10 km away: the same volume and inertia
+  // (about the centroid) to 1e-8 relative (adding the offset rounds the centres by about
+  // 1e-12 m, 1e-9 of the radii), the centroid moved by the offset. About a far origin,
+  // int r r^T - V c c^T would lose all digits (eps |c|^2 / r^2 >> 1 here).
+  const std::vector<double> r = {1e-3, 1e-3, 0.8e-3};
+  const std::vector<Vec3> c = {Vec3(0, 0, 0), Vec3(1.5e-3, 0, 0), Vec3(0.7e-3, 1.2e-3, 0.3e-3)};
+  const Vec3 far(1e4, -2e4, 5e3);
+  std::vector<Vec3> moved;
+  for (const auto& x : c)
+    moved.push_back(x + far);
+  const auto a = union_moments(c, r), b = union_moments(moved, r);
+  CHECK(b.measure == approx(a.measure).epsilon(1e-8));
+  CHECK((b.inertia - a.inertia).norm() <= 1e-8 * a.inertia.norm());
+  CHECK((b.centroid - far - a.centroid).norm() <= 1e-9 * 1e-3); // round-off of |far| ~ 1e-12 m
+}
+
 TEST_CASE("clumps: free flight keeps the shape, follows gravity and conserves angular momentum") {
   Sim3::Params prm;
   prm.gravity = Vec3(0, 0, -9.81);

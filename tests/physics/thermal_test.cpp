@@ -339,6 +339,10 @@ TEST_CASE("thermal input errors name the object, the value and the valid range")
     CHECK(two_particles<Sim3>(5920.0).conduction_time_step() ==
           grain::test::approx(2 * 2961.9).epsilon(2e-5));
     CHECK_THROWS_WITH_AS(make(), doctest::Contains("conduction limit"), InputError);
+    // exactly at the limit, C/H: the difference would flip sign each step without decaying
+    const double limit = two_particles<Sim3>(5920.0).conduction_time_step();
+    CHECK_THROWS_WITH_AS(two_particles<Sim3>(limit), doctest::Contains("at the conduction limit"),
+                         InputError);
   }
   {
     Sim3::Params p;

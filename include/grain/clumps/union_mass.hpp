@@ -174,11 +174,11 @@ XExtent x_extent(const std::vector<V>& centres, const std::vector<double>& radii
 
 } // namespace detail
 
-/// Volume, centroid and inertia per unit density of the union of spheres (centres c_k, radii
-/// r_k) [m]. Throws InputError for no members, a radius that is not > 0 or a non-finite centre.
-inline UnionMoments<3> union_moments(const std::vector<Vec3>& centres,
-                                     const std::vector<double>& radii,
-                                     const std::string& object = "clump") {
+namespace detail {
+/// union_moments about the origin of the given centres (see the public functions).
+inline UnionMoments<3> union_moments_here(const std::vector<Vec3>& centres,
+                                          const std::vector<double>& radii,
+                                          const std::string& object = "clump") {
   detail::check_members(object, centres, radii);
   const std::size_t n = centres.size();
   // x pieces: sphere ends, x-extents of pairwise intersection circles, triple points
@@ -281,11 +281,12 @@ inline UnionMoments<3> union_moments(const std::vector<Vec3>& centres,
   u.inertia = s.trace() * Eigen::Matrix3d::Identity() - s;
   return u;
 }
+} // namespace detail
 
-/// Area, centroid and polar moment of area of the union of disks (centres c_k, radii r_k) [m].
-inline UnionMoments<2> union_moments(const std::vector<Vec2>& centres,
-                                     const std::vector<double>& radii,
-                                     const std::string& object = "clump") {
+namespace detail {
+inline UnionMoments<2> union_moments_here(const std::vector<Vec2>& centres,
+                                          const std::vector<double>& radii,
+                                          const std::string& object = "clump") {
   detail::check_members(object, centres, radii);
   const std::size_t n = centres.size();
   auto [x0, x1, cuts] = detail::x_extent(centres, radii);
@@ -322,6 +323,42 @@ inline UnionMoments<2> union_moments(const std::vector<Vec2>& centres,
   u.centroid = Vec2(m[1], m[2]) / m[0];
   u.inertia = m[3] + m[4] - m[0] * u.centroid.squaredNorm();
   return u;
+}
+
+/// The moments computed about the mean of the centres (the second moments about a far origin
+/// minus V c c^T would cancel digits: a relative error of eps |c|^2 / r^2), then moved back.
+template <int D>
+UnionMoments<D> union_moments_centred(const std::vector<Vec<D>>& centres,
+                                      const std::vector<double>& radii, const std::string& object) {
+  check_members(object, centres, radii);
+  Vec<D> mean = Vec<D>::Zero();
+  for (const auto& c : centres)
+    mean += c;
+  mean /= static_cast<double>(centres.size());
+  std::vector<Vec<D>> local;
+  local.reserve(centres.size());
+  for (const auto& c : centres)
+    local.push_back(c - mean);
+  UnionMoments<D> u = union_moments_here(local, radii, object);
+  u.centroid += mean;
+  return u;
+}
+} // namespace detail
+
+/// Volume, centroid and inertia per unit density of the union of spheres (centres c_k, radii
+/// r_k) [m]; any origin (computed about the mean of the centres). Throws InputError for no
+/// members, a radius that is not > 0 or a non-finite centre.
+inline UnionMoments<3> union_moments(const std::vector<Vec3>& centres,
+                                     const std::vector<double>& radii,
+                                     const std::string& object = "clump") {
+  return detail::union_moments_centred<3>(centres, radii, object);
+}
+/// Area, centroid and polar moment of area of the union of disks (centres c_k, radii r_k) [m];
+/// any origin (computed about the mean of the centres). Throws InputError as the 3D one.
+inline UnionMoments<2> union_moments(const std::vector<Vec2>& centres,
+                                     const std::vector<double>& radii,
+                                     const std::string& object = "clump") {
+  return detail::union_moments_centred<2>(centres, radii, object);
 }
 
 } // namespace grain
