@@ -78,6 +78,9 @@
 #endif
 
 namespace grain {
+namespace bodies {
+struct BodyLink; // bodies/coupling.hpp: a particle moved by a rigid-body system
+}
 namespace detail {
 /// Zero if a and b have the same bytes, without a branch (memcmp may branch after each word).
 template <class T>
@@ -1042,10 +1045,25 @@ public:
   /// Advances one time step.
   void step() { advance(false); }
 
+  /// True if an exception left the state part-way through a step (particles drifted, loads or
+  /// histories partly updated, the time not advanced): stepping and saving a checkpoint then
+  /// throw InputError; loading a checkpoint continues from whole steps.
+  bool interrupted() const { return interrupted_; }
+  /// Throws InputError naming `who` if interrupted().
+  void require_whole_steps(const char* who) const {
+    if (!interrupted_) return;
+    throw InputError(std::string(who) +
+                     ": simulation = interrupted by an exception in the step from t = " +
+                     detail::to_text(time_) + " s (step " + std::to_string(step_) +
+                     ") is invalid; its particles are part-way through that step. Valid: a "
+                     "simulation at whole steps (load a checkpoint to continue)");
+  }
+
 private:
   /// One step; `defer_kick`: the caller steps again before anyone looks at the state, so the
   /// last half kick may be left to the next step's fused pass (see fuse_kick).
   void advance(bool defer_kick) {
+    require_whole_steps("Simulation::step");
     if (!initialized_) initialize();
     const auto t0 = std::chrono::steady_clock::now();
     const double dt = dt_;
@@ -1053,6 +1071,10 @@ private:
       for (auto& w : walls_) w.update_temperature(time_);
     ensure_groups();
     call_stages<Hook::begin_step>();
+    // the loads of the step are checked before anything moves (a damping function that turns
+    // negative stops the run at whole steps)
+    if (moves()) global_loads(IntegratorT::drift_before_forces ? time_ + dt : time_);
+    interrupted_ = true; // until the step is complete: an exception leaves part of a step
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
         integrate_before(dt);
@@ -1089,6 +1111,7 @@ private:
     ++step_;
     // time counts whole steps since the last initialisation (no drift from summing dt)
     time_ = static_cast<double>(step_ - step0_) * dt_ + time_offset_;
+    interrupted_ = false;
     if constexpr (thermal) {
       for (auto& w : walls_) w.update_temperature(time_); // current for output and queries
       if (heats() && !cond_.temperatures.empty()) cond_.fix_temperatures(particles_, time_);
@@ -1163,6 +1186,8 @@ public:
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
+      find_fixed();
+      interrupted_ = false; // a checkpoint holds whole steps
       wall_loads_.assign(list_.walls.size(), WallLoad{});
       wall_loads_pending_ = false;
       wall_force_sum_.clear();
@@ -1665,6 +1690,33 @@ private:
     const double dist = std::sqrt(d.squaredNorm());
     pair_geometry<D>(g, p.position[i], V(d * (1.0 / dist)), dist, p.radius[i], p.radius[j],
                      p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
+    if (has_fixed_) [[unlikely]] // out of line: the contact pass stays as without the check
+      g.m_eff = effective_mass(i, j, g.m_eff);
+  }
+  /// True if particle i is fixed (ParticleSpec::fixed): it moves with its velocities whatever the
+  /// forces, like a wall. Not a clump member or a particle moved by a rigid-body system, whose
+  /// inverse mass is 0 too, but which move under their contact forces.
+  bool fixed_particle(std::size_t i) const {
+    if (particles_.inv_mass[i] != 0.0) return false;
+    if constexpr (FieldStore::template contains<ClumpMember>)
+      if (std::get<std::vector<ClumpMember>>(fields_)[i].clump >= 0) return false;
+    if constexpr (FieldStore::template contains<bodies::BodyLink>)
+      if (std::get<std::vector<bodies::BodyLink>>(fields_)[i].body >= 0) return false;
+    return true;
+  }
+  /// Effective mass of the contact of particles i and j [kg]: m_i m_j / (m_i + m_j) (m_eff), or
+  /// the free partner's mass if the other is fixed (an infinite mass, as against a wall; the
+  /// restitution-based damping of the contact laws then gives the restitution asked for).
+  [[gnu::noinline]] double effective_mass(std::size_t i, std::size_t j, double m_eff) const {
+    const bool fi = fixed_particle(i), fj = fixed_particle(j);
+    if (fi == fj) return m_eff;
+    return fi ? particles_.mass[j] : particles_.mass[i];
+  }
+  /// Sets has_fixed_ from the particles.
+  void find_fixed() {
+    has_fixed_ = false;
+    for (std::size_t i = 0; i < particles_.size() && !has_fixed_; ++i)
+      has_fixed_ = fixed_particle(i);
   }
   GRAIN_INLINE bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g,
                                   const std::vector<V>& v, const std::vector<A>& w) const {
@@ -1734,6 +1786,25 @@ private:
                          " s, or a load, property or table may not be finite");
   }
 
+  /// Throws naming the first pair of listed particles at the same centre: their contact has no
+  /// normal (InputError before the first step, NumericalError later).
+  void require_distinct_centres() const {
+    const auto& p = particles_;
+    for (std::size_t i = 0; i + 1 < list_.offsets.size(); ++i)
+      for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+        const auto j = list_.partners[e];
+        if (p.position[i] != p.position[j]) [[likely]]
+          continue;
+        const std::string what = "Simulation: particles " + std::to_string(p.id[i]) + " and " +
+                                 std::to_string(p.id[j]) + " have the same centre (" +
+                                 detail::vector_text(p.position[i]) +
+                                 ") m at t = " + detail::to_text(time_) +
+                                 " s; their contact has no normal. Valid: distinct centres";
+        if (initialized_) throw NumericalError(what);
+        throw InputError(what);
+      }
+  }
+
   /// The entries of `hist` that are not blank, with their indices.
   static std::vector<std::pair<std::size_t, History>>
   keep_histories(const std::vector<History>& hist) {
@@ -1787,6 +1858,7 @@ private:
   void rebuild() {
     auto& p = particles_;
     const std::size_t n = p.size();
+    find_fixed();
     require_finite_state(); // a non-finite position has no cell
     collect_wall_loads(); // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(list_);
@@ -1818,6 +1890,7 @@ private:
       search::detail::build_all_pairs(p, walls_, reach, list_);
     }
     if constexpr (FieldStore::template contains<ClumpMember>) drop_clump_internal_pairs();
+    require_distinct_centres();
     // carry the histories of the old list over, by particle identity (origin_ maps the indices
     // after a removal or activation to those of the old list)
     if constexpr (!Contact::template stateless<D>) {
@@ -2689,15 +2762,16 @@ private:
   /// Applies a temperature update and a half kick left pending (a run interrupted by an
   /// exception, a re-initialisation, a step that cannot use the fused pass).
   void settle_kick() {
+    if (kick_pending_) {
+      kick_pending_ = false;
+      const bool spins = spins_();
+      for (std::size_t i = 0; i < particles_.size(); ++i)
+        after_one(i, dt_, spins);
+    }
     if (heat_pending_) {
       heat_pending_ = false;
       integrate_temperature(dt_);
     }
-    if (!kick_pending_) return;
-    kick_pending_ = false;
-    const bool spins = spins_();
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      after_one(i, dt_, spins);
   }
   /// Velocity Verlet without controlled particles or mass damping: one pass over the particles
   /// ends step n (when its second half kick was left pending) and starts step n+1. Per particle:
@@ -3074,6 +3148,12 @@ private:
   /// last list build (< 0: not measured).
   bool prefilled_ = false;
   double fused_d2_ = 0.0;
+  /// True if some particle is fixed (fixed_particle): the contact pass then checks each touching
+  /// pair for the effective mass (found at every list build and checkpoint load).
+  bool has_fixed_ = false;
+  /// True from the first change of the state in a step until the step is complete: after an
+  /// exception inside a step, the simulation refuses to continue or to be saved.
+  bool interrupted_ = false;
   double dt_ = 0.0, time_ = 0.0, time_offset_ = 0.0, end_time_ = 0.0;
   double r_max_ = 0.0, skin_ = 0.0, reach_ = 0.0;
   double cutoff_ = 0.0; ///< largest gap across which heat flows [m]

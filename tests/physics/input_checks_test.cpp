@@ -187,3 +187,19 @@ TEST_CASE("numerical checks: a temperature that is no longer finite stops a ther
                        NumericalError);
   CHECK(sim.time() < 0.51);
 }
+
+TEST_CASE("input: two particles at the same centre are refused before the run") {
+  // their contact has no normal: the run would otherwise end in NaN positions
+  MechSim sim({.time_step = 1e-6});
+  sim.add_material(glass());
+  sim.add_particle({.position = Vec3(0.01, 0, 0), .radius = 1e-3, .id = 4});
+  sim.add_particle({.position = Vec3(0.01, 0, 0), .radius = 2e-3, .id = 9});
+  std::string what;
+  try {
+    sim.initialize();
+  } catch (const InputError& e) {
+    what = e.what();
+  }
+  CHECK(what.find("particles 4 and 9 have the same centre (0.01, 0, 0) m") != std::string::npos);
+  CHECK(what.find("distinct centres") != std::string::npos);
+}

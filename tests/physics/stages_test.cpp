@@ -416,3 +416,70 @@ TEST_CASE("wall loads: bad wall index") {
   CHECK(what.find("wall index 3") != std::string::npos);
   CHECK(what.find("[0, 0)") != std::string::npos);
 }
+
+namespace {
+/// A stage that throws in after_forces of the step that ends at step `at` (the particles have
+/// already drifted in that step).
+struct ThrowAt {
+  long at = -1;
+  template <class Sim>
+  void after_forces(Sim& sim) {
+    if (sim.step_count() + 1 == at) throw std::runtime_error("stage failed");
+  }
+};
+} // namespace
+
+TEST_CASE("stages: an exception inside a step refuses stepping and saving until a load") {
+  using Sim = Simulation<Disk, search::CellList, Contact2, stages<ThrowAt>>;
+  auto make = [] {
+    Sim sim({.time_step = 1e-5, .gravity = Vec2(0, -9.81)});
+    const auto m = sim.add_material(glass);
+    sim.add_particle({.position = Vec2(0, 0), .radius = 1e-3, .material = m});
+    return sim;
+  };
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "grain_interrupted.ckp").string();
+  Sim sim = make();
+  sim.steps(3);
+  io::save_checkpoint(sim, path);
+  sim.stage<ThrowAt>().at = 6;
+  CHECK_THROWS_WITH_AS(sim.steps(5), "stage failed", std::runtime_error);
+  // the particle drifted in step 6, the time did not advance: part of a step
+  CHECK(sim.interrupted());
+  CHECK(sim.step_count() == 5);
+  CHECK_THROWS_WITH_AS(sim.step(), doctest::Contains("interrupted by an exception"), InputError);
+  CHECK_THROWS_WITH_AS(io::save_checkpoint(sim, path + "2"),
+                       doctest::Contains("grain::io::save_checkpoint"), InputError);
+  // loading a checkpoint continues from whole steps, as an uninterrupted run
+  sim.stage<ThrowAt>().at = -1;
+  io::load_checkpoint(sim, path);
+  CHECK_FALSE(sim.interrupted());
+  sim.steps(5);
+  Sim straight = make();
+  straight.steps(8);
+  CHECK(sim.particles().position[0] == straight.particles().position[0]);
+  CHECK(sim.particles().velocity[0] == straight.particles().velocity[0]);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("stages: an exception between steps leaves whole steps") {
+  // a damping function that turns negative is found before the step moves anything
+  using Sim = Simulation<Disk, search::CellList, Contact2>;
+  auto make = [] {
+    Sim sim({.time_step = 1e-5, .gravity = Vec2(0, -9.81)});
+    const auto m = sim.add_material(glass);
+    sim.add_particle({.position = Vec2(0, 0), .radius = 1e-3, .material = m});
+    sim.set_damping(TimeFunction::linear(1e-4, -1.0), TimeFunction::constant(0.0));
+    return sim;
+  };
+  Sim sim = make();
+  CHECK_THROWS_AS(sim.steps(20), InputError);
+  CHECK_FALSE(sim.interrupted());
+  // the state is that of whole steps: the same as a run of step_count() steps
+  const long n = sim.step_count();
+  CHECK(n >= 9);
+  Sim whole = make();
+  whole.steps(n);
+  CHECK(sim.particles().position[0] == whole.particles().position[0]);
+  CHECK(sim.particles().velocity[0] == whole.particles().velocity[0]);
+}

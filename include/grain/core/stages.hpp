@@ -8,7 +8,8 @@
 ///
 /// - `initialize(sim)`: at the end of every `Simulation::initialize()` (neighbour list built,
 ///   time step fixed, initial forces known), before the first step and after a change of the
-///   set-up between runs;
+///   set-up between runs (not after io::load_checkpoint: a stage's state comes from the
+///   checkpoint);
 /// - `begin_step(sim)`: at the start of a step, time t;
 /// - `before_search(sim)`: after the drift (velocity Verlet: positions at t + dt, velocities at
 ///   t + dt/2) and the wall motion, before the neighbour search; a stage may move particles and

@@ -265,6 +265,7 @@ inline constexpr char end_mark[8] = {'G', 'R', 'A', 'I', 'N', 'E', 'N', 'D'};
 /// checkpoint at `path` and throws a std::runtime_error naming the file and the reason.
 template <class Sim>
 void save_checkpoint(const Sim& sim, const std::string& path) {
+  sim.require_whole_steps("grain::io::save_checkpoint");
   if (!sim.initialized())
     throw InputError("grain::io::save_checkpoint: simulation = not initialised is invalid; valid: "
                      "a simulation after initialize() or a run");

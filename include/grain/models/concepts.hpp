@@ -7,7 +7,7 @@
 /// - `static constexpr Slot slot` naming the slot it fills,
 /// - `struct Params` (user coefficients with defaults) and `static void validate(const Params&)`,
 /// - `template <int D> struct History` (per-contact state; an empty struct costs zero bytes),
-/// - one static function of its slot (`force`, `tangential`, `torque`, ...).
+/// - one static function of its slot (`force` for normal and tangential models, `torque`, ...).
 /// A model may define `template <int D> static void reverse(History<D>&)` to mirror its history
 /// when the two partners of a pair swap roles.
 

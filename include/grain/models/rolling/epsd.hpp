@@ -14,9 +14,10 @@
 /// rolling-resistance coefficient, R* [m] the effective radius, F_n [N] the normal force and w_r
 /// [rad/s] the rolling part of w_i - w_j (relative_rotation.hpp). The spring torque M_k is the
 /// history: a vector in the tangent plane (3D, rotated with the contact like the tangential
-/// spring) or a scalar (2D). It is incremented with w_r from `ContactGeometry::omega_rel` (with
-/// velocity Verlet the angular velocities predicted at the end of the step: the geometry has no
-/// rolling counterpart of `slip_velocity`) and truncated at M_m, which gives a true static regime
+/// spring) or a scalar (2D). It is incremented with the rolling part of
+/// `ContactGeometry::slip_omega_rel` (the angular velocities that turned the particles over the
+/// step; with velocity Verlet the damping torque M_d sees those predicted at the end of the step,
+/// `omega_rel`) and truncated at M_m, which gives a true static regime
 /// (a ball at rest on a slope below the rolling angle stays at rest) and, once mobilised, the
 /// constant resistance of rolling::Constant. The torque on the partner is equal and opposite.
 /// Elastic energy |M_k|^2 / (2 k_r).

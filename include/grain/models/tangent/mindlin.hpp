@@ -12,8 +12,9 @@
 /// tangent plane, rotated with the contact and truncated at the Coulomb limit (stick_slip.hpp);
 /// sticking is tested against mu_s, sliding carries mu_d |F_n|. Elastic energy 1/2 K_t |xi|^2.
 ///
-/// - eta_t [N s/m]: `damping` if >= 0, else the normal damping at the same damping ratio,
-///   eta_t = eta_n sqrt(K_t / K_n) with K_n the normal model's tangent stiffness (for
+/// - eta_t [N s/m]: `damping` if >= 0, else the normal damping scaled by the stiffnesses,
+///   eta_t = eta_n sqrt(K_t / K_n) (a sticking contact moves with m*/kappa, so its damping ratio
+///   is sqrt(kappa) times the normal one) with K_n the normal model's tangent stiffness (for
 ///   normal::Hertz<TsujiDamping> this is LIGGGHTS' gamma_t = -2 sqrt(5/6) beta sqrt(S_t m*)).
 ///
 /// Defaults: damping -1 (normal damping ratio).

@@ -21,7 +21,9 @@
 ///   for e_t = 0, where m*/kappa is the effective mass of the tangential motion of a sticking
 ///   contact, kappa = 1 + m R^2/I: 7/2 for spheres (Deen's 2 m*/7), 3 for solid disks; set
 ///   `kappa` = 3.5 for 2D disks with sphere mass;
-///   else the normal damping scaled to the same damping ratio, eta_t = eta_n sqrt(k_t / k_n).
+///   else the normal damping scaled by the stiffnesses, eta_t = eta_n sqrt(k_t / k_n) (LIGGGHTS'
+///   convention; as the sticking contact moves with m*/kappa, its damping ratio is sqrt(kappa)
+///   times the normal one).
 /// - mu_s, mu_d: the pair's static and dynamic friction coefficients.
 ///
 /// Defaults: stiffness 0 (derived), stiffness_ratio 0 (Mindlin), damping -1 (normal ratio),
