@@ -118,6 +118,19 @@ struct NoColumns {
   void values(const Sim&, std::vector<double>&) const {}
 };
 
+/// A figure with one name but two values.
+struct TwoValues {
+  template <class Sim>
+  void names(const Sim&, std::vector<std::string>& out) const {
+    out.push_back("x");
+  }
+  template <class Sim>
+  void values(const Sim&, std::vector<double>& out) const {
+    out.push_back(1.0);
+    out.push_back(2.0);
+  }
+};
+
 /// A column whose name depends on the conduction model: differs between variants.
 struct NamedByModel {
   template <class Sim>
@@ -355,15 +368,31 @@ TEST_CASE("io::compare: input errors name the value and the valid range, before 
               .out = nullptr})
             .find("grain::io::compare (history): path = ") != std::string::npos);
   CHECK(made == 0);
-  // a column set without columns is found when the first variant is set up
+  // a figure without columns is found when the first variant is set up (the CSV would lose it)
   CHECK(message([&] {
-          io::compare<Column>(variants<BOB>{}, counted, ok, NoColumns{});
-        }).find("figures = {} (no columns) is invalid") != std::string::npos);
+          io::compare<Column>(variants<BOB>{}, counted, ok, mean_temperature(), NoColumns{});
+        }) == "grain::io::compare: figure 1 gives no column, which is invalid; valid: at least one "
+              "name per figure, e.g. io::column(name, f)");
   CHECK(made == 1);
   CHECK(message([&] { io::compare<Column>(variants<BOB, Pipe>{}, counted, ok, NamedByModel{}); }) ==
         "grain::io::compare: variant \"thermal pipe\" gives 1 figures that differ from those of "
         "the first variant; valid: the same figure names for every variant");
   CHECK(made == 3);
+  // repeated names, and a name of a fixed column (the table lookups would find the wrong one)
+  CHECK(message([&] {
+          io::compare<Column>(variants<BOB>{}, counted, ok, mean_temperature(), mean_temperature());
+        }).find("figure name \"mean_temperature [K]\" is repeated or names a fixed column") !=
+        std::string::npos);
+  CHECK(message([&] {
+          io::compare<Column>(variants<BOB>{}, counted, ok,
+                              io::column("steps", [](const auto&) { return 0.0; }));
+        }).find("figure name \"steps\" is repeated or names a fixed column") != std::string::npos);
+  CHECK(made == 5);
+  // a figure with more values than names would shift the CSV columns
+  CHECK(message([&] {
+          io::compare<Column>(variants<BOB>{}, counted, ok, TwoValues{});
+        }).find("\" gave 2 values for 1 names, which is invalid; valid: one value per name") !=
+        std::string::npos);
   CHECK_THROWS_AS(io::time_to_reach("t", std::nan(""), [](const auto&) { return 0.0; }),
                   InputError);
   CHECK_THROWS_AS(io::time_to_reach("", 1.0, [](const auto&) { return 0.0; }), InputError);

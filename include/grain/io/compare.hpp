@@ -71,9 +71,10 @@
 /// Bad input raises grain::InputError before any variant runs: an empty variant or figure list,
 /// a non-positive or non-finite duration, a step count below 1 (or both or neither given), names
 /// that are not one per variant, empty or repeated, repeats below 1, a history without a positive
-/// interval, and an output file that cannot be written. Figures that give no column are found
-/// when the first variant is set up, and figures whose names differ between variants when the
-/// variant that differs is set up (both InputError).
+/// interval, and an output file that cannot be written. A figure that gives no column, figure
+/// names that repeat or name a fixed column are found when the first variant is set up, figures
+/// whose names differ between variants when the variant that differs is set up, and figures
+/// that give another number of values than of names when the first run ends (all InputError).
 
 #include <grain/core/error.hpp>
 #include <grain/io/console.hpp>
@@ -458,6 +459,37 @@ Sim make_simulation(Scenario& scenario) {
   }
 }
 
+/// The column names of the figures, checked: every figure gives at least one, no name repeats
+/// or takes the name of a fixed column (InputError otherwise).
+template <class Tuple, class Sim>
+void checked_names(const Tuple& figures, const Sim& sim, std::vector<std::string>& names) {
+  std::size_t k = 0;
+  auto one = [&](const auto& c) {
+    const std::size_t before = names.size();
+    column_names(c, sim, names);
+    if (names.size() == before)
+      throw InputError("grain::io::compare: figure " + std::to_string(k) +
+                       " gives no column, which is invalid; valid: at least one name per "
+                       "figure, e.g. io::column(name, f)");
+    ++k;
+  };
+  std::apply([&](const auto&... c) { (one(c), ...); }, figures);
+  static const char* fixed[] = {"variant",   "time_step [s]", "steps",
+                                "particles", "wall_time [s]", "particle_steps_per_second [1/s]"};
+  for (std::size_t a = 0; a < names.size(); ++a) {
+    bool clash = false;
+    for (const char* x : fixed)
+      clash = clash || names[a] == x;
+    for (std::size_t b = 0; b < a; ++b)
+      clash = clash || names[a] == names[b];
+    if (clash)
+      throw InputError("grain::io::compare: figure name \"" + names[a] +
+                       "\" is repeated or names a fixed column, which is invalid; valid: "
+                       "distinct names other than variant, time_step [s], steps, particles, "
+                       "wall_time [s] and particle_steps_per_second [1/s]");
+  }
+}
+
 /// Runs one variant `repeats` times; fills `row` and, for the first variant, `figure_names`.
 template <class Sim, class Scenario, class Tuple>
 void run_variant(Scenario& scenario, const CompareOptions& o, const Tuple& figures,
@@ -468,10 +500,7 @@ void run_variant(Scenario& scenario, const CompareOptions& o, const Tuple& figur
     Tuple f = figures; // fresh state for every run
     start_all(f, sim);
     std::vector<std::string> names;
-    names_of_all(f, sim, names);
-    if (names.empty())
-      throw InputError("grain::io::compare: figures = {} (no columns) is invalid; valid: at "
-                       "least one figure, e.g. io::column(name, f)");
+    checked_names(f, sim, names); // at least one figure (checked before), each with a name
     if (first && rep == 0) {
       figure_names = names;
     } else if (names != figure_names) {
@@ -502,6 +531,11 @@ void run_variant(Scenario& scenario, const CompareOptions& o, const Tuple& figur
 
     std::vector<double> values;
     values_of_all(f, sim, values);
+    if (values.size() != names.size())
+      throw InputError("grain::io::compare: the figures of variant \"" + row.name + "\" gave " +
+                       std::to_string(values.size()) + " values for " +
+                       std::to_string(names.size()) +
+                       " names, which is invalid; valid: one value per name");
     row.figures = values;
     row.time_step = sim.time_step();
     row.steps = sim.step_count() - steps0;

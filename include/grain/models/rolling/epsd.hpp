@@ -32,7 +32,8 @@
 /// - k_r [N m/rad]: `stiffness` if > 0, else 2.25 k_n mu_r^2 R*^2 (default 0).
 /// - eta_r [-]: `damping_ratio` (default 0.3), the viscous damping ratio of the rolling mode.
 /// - f: `damping_at_limit` (default false: f = 0, no damping torque while fully mobilised).
-/// - c: `inertia_factor` if > 0, else 2/5 (3D) or 1/2 (2D); 2/5 for 2D disks with sphere mass.
+/// - c: `inertia_factor` if > 0, else 2/5 (3D) or 1/2 (2D); the model does not see the shape,
+///   so 2D disks with sphere mass need `inertia_factor` = 0.4.
 
 #include <grain/models/rolling/relative_rotation.hpp>
 #include <algorithm>
