@@ -297,12 +297,9 @@ public:
   using A = Angular<D>;
   /// Loops over fewer particles than this run on one thread (a parallel region costs more).
   static constexpr long parallel_threshold = 1000;
-  /// The contact loop requests the partners' data of the row this many rows ahead...
+  /// The contact loop (rows from the last down) requests the data of the row 2 x prefetch_rows
+  /// rows ahead, and of the partners beyond the chunk of the row prefetch_rows rows ahead...
   static constexpr long prefetch_rows = 16;
-  /// ... except the partners within prefetch_near rows of their row: the row's own data are
-  /// requested 2 x prefetch_rows rows ahead, so those of a partner that close were requested
-  /// as its own row's already (with 64 rows, partners 33 to 64 rows ahead were missed)
-  static constexpr std::size_t prefetch_near = 2 * prefetch_rows;
   /// ... if the particles of one list span (largest j - i) hold more than prefetch_span_bytes
   /// of the data a row reads or writes per partner (row_bytes [B]). Measured (docs/performance.md):
   /// settle3d N = 1e5 (680 kB) 1.16 x faster, N = 1e6 1.17 x; settle3d N = 1e4 (170 kB) and
@@ -2122,13 +2119,16 @@ private:
     }
     tracking_ = params_.track_dissipation && in_step;
     if (tracking_) work_rows_.assign(p.size(), 0.0);
-    // deterministic chunks: the chunk length depends on N and the list span only
+    // deterministic chunks: the chunk length depends on N and the list span only. At least a
+    // span; two spans while that leaves 16 chunks or more (the rows of a chunk's last span have
+    // partners beyond it, which come from memory; fewer such rows measured 2 to 4 % faster at
+    // N = 1e5); at most 64 chunks.
     const long span = static_cast<long>(list_.max_span);
-    const long chunk = std::max({span, (n + 63) / 64, 1L});
+    const long chunk = std::max({span, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
     const long nchunks = (n + chunk - 1) / chunk;
-    // partners far ahead in memory (a layer of cells in 3D) are requested some rows in advance,
-    // and the rows' own data further ahead; with partners close by (a 2D row of cells) all of it
-    // is in the caches already
+    // the rows' own data and the partners beyond the chunk are requested some rows in advance
+    // if a span of particle data is too large for the caches (a layer of cells in 3D); with
+    // partners close by (a 2D row of cells) all of it is in the caches already
     const long ahead =
         static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
     // A row adds loads to its own particle and to partners at most one chunk ahead, so the rows
@@ -2139,10 +2139,10 @@ private:
     // The chunks go to the threads in contiguous runs of about equal work (entries and rows), in
     // particle order: a thread works on about the particles it has in the static passes over the
     // particles, whose data stay in its caches (on some machines the two cores do not share a
-    // cache). A thread runs its chunks in the order 0, 2, 1, 4, 3, ...: the odd chunk right after
-    // the even one above it, while the data of both are still in the caches (at N = 1e6 the data
-    // of a step do not fit, and running all even chunks before all odd ones read much of them
-    // twice).
+    // cache). A thread runs its chunks from its last one down, each even chunk followed by the
+    // odd one above it (..., 4, 5, 2, 3, 0, 1), while the data of both are still in the caches
+    // (at N = 1e6 the data of a step do not fit, and running all even chunks before all odd ones
+    // read much of them twice).
     auto work = [&](long c) {
       const auto b = static_cast<std::size_t>(c * chunk);
       const auto e = static_cast<std::size_t>(std::min(n, (c + 1) * chunk));
@@ -2179,16 +2179,17 @@ private:
           detail::wait_for(done[static_cast<std::size_t>(c - 1)]);
           if (c + 1 < nchunks) detail::wait_for(done[static_cast<std::size_t>(c + 1)]);
         }
-        contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, n);
+        contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, span);
         done[static_cast<std::size_t>(c)].store(1, std::memory_order_release);
       };
-      // an odd first chunk waits for the previous thread's last one: it goes last
-      const long deferred = a % 2 == 1 ? a : -1;
-      for (long c = a + a % 2; c < b; c += 2) {
+      // from the top down, each even chunk followed by the odd one above it; an odd last chunk
+      // waits for the next thread's first one, which that thread runs last: it goes last too
+      const long deferred = (b - 1) % 2 == 1 && b < nchunks && b - 1 >= a ? b - 1 : -1;
+      for (long c = (b - 1) - (b - 1) % 2; c >= a; c -= 2) {
         run(c);
-        if (c - 1 >= a && c - 1 != deferred) run(c - 1);
+        if (c + 1 < b && c + 1 != deferred) run(c + 1);
       }
-      if (b - 1 >= a && (b - 1) % 2 == 1 && b - 1 != deferred) run(b - 1);
+      if (a % 2 == 1 && a < b && a != deferred) run(a);
       if (deferred >= 0) run(deferred);
     }
     wall_loads_pending_ = !walls_.empty();
@@ -2277,13 +2278,13 @@ private:
     else return particles_.omega;
   }
 
-  /// Requests the data that row i reads of its partners, so that the cache misses of partners
-  /// met for the first time in a step (those a layer of cells ahead) overlap with the work of the
-  /// rows before it. Read intent only: a partner may belong to another thread's chunk.
-  GRAIN_INLINE void prefetch_row(std::size_t i) const {
+  /// Requests the data that row i reads of its partners at or beyond `end` (the next chunk's
+  /// particles, not yet rows in this sweep), so that their cache misses overlap with the work of
+  /// the rows before it. Read intent only: a partner may belong to another thread's chunk.
+  GRAIN_INLINE void prefetch_row(std::size_t i, std::size_t end) const {
     for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
       const auto j = list_.partners[e];
-      if (j - i > prefetch_near) prefetch_particle<0>(j);
+      if (j >= end) prefetch_particle<0>(j);
     }
   }
 
@@ -2295,19 +2296,23 @@ private:
     prefetch_particle<1>(i);
     const auto e = list_.offsets[i]; // may be the end of the list (no entries left)
     GRAIN_PREFETCH(list_.partners.data() + e, 0);
-    if constexpr (!Contact::template stateless<D>) GRAIN_PREFETCH(history_.data() + e, 1);
+    if constexpr (!Contact::template stateless<D>) {
+      GRAIN_PREFETCH(history_.data() + e, 1);
+      GRAIN_PREFETCH(history_.data() + std::min<std::size_t>(e + 2, history_.size()), 1);
+    }
     // the rows' offsets into the list (read here, further ahead) and into the wall entries
-    GRAIN_PREFETCH(list_.offsets.data() + std::min(i + 2 * prefetch_rows, list_.offsets.size() - 1),
-                   0);
+    GRAIN_PREFETCH(list_.offsets.data() + (i >= 2 * prefetch_rows ? i - 2 * prefetch_rows : 0), 0);
     GRAIN_PREFETCH(list_.wall_offsets.data() + i, 0);
   }
 
-  /// The requests made at row ii: the partners' data of the row `ahead` rows further and the
-  /// own data of the row 2 x `ahead` rows further (none past the last row, n).
-  GRAIN_INLINE void request_ahead(long ii, long ahead, long n) const {
-    if (ii + ahead < n) {
-      prefetch_row(static_cast<std::size_t>(ii + ahead));
-      if (ii + 2 * ahead < n) prefetch_own(static_cast<std::size_t>(ii + 2 * ahead));
+  /// The requests made at row ii of the rows [begin, end) of a chunk, run downwards: the own data
+  /// of the row 2 x `ahead` rows further down, and the partners beyond the chunk of the row
+  /// `ahead` rows further down if it is at or above `cold` (none below the chunk's first row).
+  GRAIN_INLINE void request_ahead(long ii, long ahead, long begin, long cold, long end) const {
+    if (ii - ahead >= begin) {
+      if (ii - ahead >= cold)
+        prefetch_row(static_cast<std::size_t>(ii - ahead), static_cast<std::size_t>(end));
+      if (ii - 2 * ahead >= begin) prefetch_own(static_cast<std::size_t>(ii - 2 * ahead));
     }
   }
 
@@ -2424,15 +2429,21 @@ private:
     }
   }
 
-  /// The contacts of rows [begin, end). Each row's loads are added to both partners in the
-  /// order of the list (the same order for any number of threads).
-  void contact_rows(long begin, long end, long ahead, long n) {
+  /// The contacts of rows [begin, end), from the last row down. Each row's loads are added to
+  /// both partners in the order of the list (the same order for any number of threads).
+  /// Going down, the partners of a row (j > i) in the chunk were rows a moment ago and are in
+  /// the caches: what comes from memory is the rows' own data, as sequential streams, and the
+  /// partners beyond the chunk of the rows of its last span (`ahead`: see request_ahead). Going
+  /// up instead, every row met a partner a layer of cells ahead for the first time in the step,
+  /// through the list (measured 1 to 5 % slower at N = 1e5 and 1e6, docs/performance.md).
+  void contact_rows(long begin, long end, long ahead, long span) {
     auto& p = particles_;
+    const long cold = std::max(begin, end - span); // rows with partners beyond the chunk
     if constexpr (Contact::indirect) {
       ContactGeometry<D> g;
       [[maybe_unused]] const bool heat = heat_on_;
-      for (long ii = begin; ii < end; ++ii) {
-        request_ahead(ii, ahead, n);
+      for (long ii = end - 1; ii >= begin; --ii) {
+        request_ahead(ii, ahead, begin, cold, end);
         const auto i = static_cast<std::size_t>(ii);
         for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
           const auto j = list_.partners[e];
@@ -2459,17 +2470,17 @@ private:
       constexpr std::uint32_t capacity = 64;
       std::uint32_t hit_entry[capacity], hit_row[capacity];
       std::uint32_t nhit = 0;
-      long first = begin; // rows [first, i) have their pairs collected, their walls pending
+      long last = end; // rows [i, last) have their pairs collected, their walls pending
       auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
         for (std::uint32_t k = 0; k < nhit; ++k)
           pair_contact(hit_entry[k], hit_row[k], list_.partners[hit_entry[k]]);
         nhit = 0;
       };
-      auto flush = [&](long last) GRAIN_INLINE_LAMBDA {
+      auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
         laws();
-        for (long r = first; r < last; ++r)
+        for (long r = last - 1; r >= first; --r)
           wall_contacts(static_cast<std::size_t>(r));
-        first = last;
+        last = first;
       };
       auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
                       double ri) GRAIN_INLINE_LAMBDA {
@@ -2489,14 +2500,14 @@ private:
           }
         }
       };
-      for (long ii = begin; ii < end; ++ii) {
-        request_ahead(ii, ahead, n);
+      for (long ii = end - 1; ii >= begin; --ii) {
+        request_ahead(ii, ahead, begin, cold, end);
         const auto i = static_cast<std::uint32_t>(ii);
         const auto r0 = list_.offsets[i], r1 = list_.offsets[i + 1];
         const V xi = p.position[i];
         const double ri = p.radius[i];
         if (nhit + (r1 - r0) > capacity) {
-          flush(ii);
+          flush(ii + 1);
           if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
             for (auto b = r0; b < r1; b += capacity) {
               test(b, std::min(r1, b + capacity), i, xi, ri);
@@ -2507,7 +2518,7 @@ private:
         }
         test(r0, r1, i, xi, ri);
       }
-      flush(end);
+      flush(begin);
     }
   }
 
@@ -2821,13 +2832,14 @@ private:
   template <bool Kick, bool Check>
   double fused_pass(long n, const Fused& f) {
     double d2 = 0.0;
-    // Each thread runs its share backwards: it ends on the particles its first contact chunks
-    // read next, which are then still in the caches (the share is the one the contact pass
-    // starts from; at N = 1e6 the particle data do not fit in the caches).
+    // Each thread runs its share forwards: it ends on the particles its first contact chunks
+    // (its last ones: the contact pass runs down) read next, which are then still in the caches
+    // (the share is about the one the contact pass works on; at N = 1e6 the particle data do not
+    // fit in the caches).
 #pragma omp parallel reduction(max : d2) if (n >= parallel_threshold)
     {
       const auto [lo, hi] = detail::static_share(n);
-      for (long i = hi - 1; i >= lo; --i)
+      for (long i = lo; i < hi; ++i)
         d2 = std::max(d2,
                       detail::nan_as_inf(fused_one<Kick, Check>(static_cast<std::size_t>(i), f)));
     }
