@@ -224,3 +224,36 @@ TEST_CASE("cell list re-sorts particles but keeps ids and contact histories") {
   }
   CHECK(compared > 0);
 }
+
+TEST_CASE("cell order sorts by cell and keeps the order of the particles within a cell") {
+  // a jittered 3D lattice, several particles per cell, the points shuffled
+  ParticleArrays<3> p;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 9; ++j)
+      for (int i = 0; i < 14; ++i) {
+        p.id.push_back(static_cast<std::int64_t>(p.id.size()));
+        p.position.push_back(Vec3(0.5 * i + jitter(rng), 0.5 * j + jitter(rng), 0.5 * k));
+        p.radius.push_back(0.2);
+      }
+  std::shuffle(p.position.begin(), p.position.end(), rng);
+  const double cell = 1.0;
+  const auto perm = search::detail::cell_order(p, cell);
+  search::detail::Grid<3> grid;
+  grid.setup(p.position, cell);
+  REQUIRE(perm.size() == p.size());
+  std::vector<std::uint32_t> seen(perm);
+  std::sort(seen.begin(), seen.end());
+  for (std::size_t k = 0; k < seen.size(); ++k) REQUIRE(seen[k] == k); // a permutation
+  int ties = 0;
+  for (std::size_t k = 1; k < perm.size(); ++k) {
+    const long a = grid.index(p.position[perm[k - 1]]), b = grid.index(p.position[perm[k]]);
+    CHECK(a <= b); // by cell
+    if (a == b) { // stable within a cell
+      CHECK(perm[k - 1] < perm[k]);
+      ++ties;
+    }
+  }
+  CHECK(ties > static_cast<int>(p.size()) / 2); // the test has cells with several particles
+}

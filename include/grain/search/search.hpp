@@ -170,18 +170,22 @@ void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& wal
 }
 
 /// Permutation that sorts particles by cell (see Grid for the order of the axes); stable within
-/// a cell.
+/// a cell. A counting sort: the grid has at most a few cells per particle, so this is O(N) (the
+/// same order as a stable comparison sort by cell index).
 template <int D>
 std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size) {
   Grid<D> grid;
   grid.setup(p.position, cell_size);
   const std::size_t n = p.size();
-  std::vector<long> key(n);
-  for (std::size_t i = 0; i < n; ++i) key[i] = grid.index(p.position[i]);
+  std::vector<std::size_t> key(n);
+  std::vector<std::uint32_t> start(static_cast<std::size_t>(grid.count()) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    key[i] = static_cast<std::size_t>(grid.index(p.position[i]));
+    ++start[key[i] + 1];
+  }
+  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
   std::vector<std::uint32_t> perm(n);
-  std::iota(perm.begin(), perm.end(), 0u);
-  std::stable_sort(perm.begin(), perm.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  for (std::size_t i = 0; i < n; ++i) perm[start[key[i]]++] = static_cast<std::uint32_t>(i);
   return perm;
 }
 
