@@ -169,24 +169,40 @@ void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& wal
   }
 }
 
+/// The particles of a grid's cells: `members` holds the particle indices cell by cell, ascending
+/// within a cell; those of cell c are members[start[c]] .. members[start[c + 1] - 1]. A counting
+/// sort, O(N + cells): the grid has at most a few cells per particle.
+struct CellMembers {
+  std::vector<std::uint32_t> start;   ///< cells + 1 entries
+  std::vector<std::uint32_t> members; ///< N entries
+};
+
+template <int D>
+CellMembers cell_members(const Grid<D>& grid, const std::vector<Vec<D>>& x) {
+  const std::size_t n = x.size();
+  CellMembers out;
+  // counts at c + 2, sums, then each particle at start[c + 1]++: start[c] ends as cell c's start
+  out.start.assign(static_cast<std::size_t>(grid.count()) + 2, 0);
+  std::vector<std::size_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    key[i] = static_cast<std::size_t>(grid.index(x[i]));
+    ++out.start[key[i] + 2];
+  }
+  for (std::size_t c = 2; c < out.start.size(); ++c) out.start[c] += out.start[c - 1];
+  out.members.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out.members[out.start[key[i] + 1]++] = static_cast<std::uint32_t>(i);
+  out.start.pop_back();
+  return out;
+}
+
 /// Permutation that sorts particles by cell (see Grid for the order of the axes); stable within
-/// a cell. A counting sort: the grid has at most a few cells per particle, so this is O(N) (the
-/// same order as a stable comparison sort by cell index).
+/// a cell.
 template <int D>
 std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size) {
   Grid<D> grid;
   grid.setup(p.position, cell_size);
-  const std::size_t n = p.size();
-  std::vector<std::size_t> key(n);
-  std::vector<std::uint32_t> start(static_cast<std::size_t>(grid.count()) + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    key[i] = static_cast<std::size_t>(grid.index(p.position[i]));
-    ++start[key[i] + 1];
-  }
-  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-  std::vector<std::uint32_t> perm(n);
-  for (std::size_t i = 0; i < n; ++i) perm[start[key[i]]++] = static_cast<std::uint32_t>(i);
-  return perm;
+  return cell_members(grid, p.position).members;
 }
 
 /// Linked-cell build: partners j > i closer than r_i + r_j + reach, rows ascending.
@@ -197,19 +213,7 @@ void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, 
   list.clear(n);
   Grid<D> grid;
   grid.setup(p.position, 2.0 * r_max + reach);
-  const long nc = grid.count();
-  std::vector<std::uint32_t> head(static_cast<std::size_t>(nc) + 1, 0);
-  std::vector<long> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    key[i] = grid.index(p.position[i]);
-    ++head[static_cast<std::size_t>(key[i]) + 1];
-  }
-  for (long c = 0; c < nc; ++c) head[c + 1] += head[c];
-  std::vector<std::uint32_t> members(n);
-  {
-    std::vector<std::uint32_t> fill(head.begin(), head.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) members[fill[key[i]]++] = static_cast<std::uint32_t>(i);
-  }
+  const auto [head, members] = cell_members(grid, p.position);
   std::vector<std::uint32_t> row;
   for (std::size_t i = 0; i < n; ++i) {
     row.clear();
