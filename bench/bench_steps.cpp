@@ -1,5 +1,7 @@
-// Whole simulation steps of the benchmark cases; reports particle-steps per second. settle3d and
-// thermal3d (the same mechanics plus heat conduction) side by side give the cost of conduction.
+// Whole simulation steps of the benchmark cases (settle3d, thermal3d and pack2d at N = 1e4 and
+// 1e5, settle3d and thermal3d at 1e6: the sizes of docs/performance.md, warm-up steps first);
+// reports particle-steps per second. settle3d and thermal3d (the same mechanics plus heat
+// conduction) side by side give the cost of conduction.
 #include "cases.hpp"
 #include <benchmark/benchmark.h>
 
@@ -28,8 +30,14 @@ static void thermal3d(benchmark::State& state, int nx, int ny, int nz, int warm)
   run_steps(state, sim, warm);
 }
 
+static void pack2d(benchmark::State& state, int nx, int ny, int warm) {
+  auto sim = grain::bench::make_pack2d(nx, ny);
+  run_steps(state, sim, warm);
+}
+
 BENCHMARK_CAPTURE(settle3d, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(thermal3d, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pack2d, tiny, 20, 20, 10)->Unit(benchmark::kMillisecond);
 // A fixed number of steps, so that settle3d and thermal3d time the same motion; three repetitions
 // (compare the medians: the machine is noisy).
 BENCHMARK_CAPTURE(settle3d, N1e4, 25, 25, 16, 1000)
@@ -40,5 +48,14 @@ BENCHMARK_CAPTURE(settle3d, N1e5, 50, 50, 40, 1000)
     ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
 BENCHMARK_CAPTURE(thermal3d, N1e5, 50, 50, 40, 1000)
     ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
+BENCHMARK_CAPTURE(pack2d, N1e4, 125, 80, 1000)
+    ->Unit(benchmark::kMillisecond)->Iterations(2000)->Repetitions(3);
+BENCHMARK_CAPTURE(pack2d, N1e5, 400, 250, 1000)
+    ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
+// the case definition's N = 1e6 (100 x 100 x 100, 200 warm-up steps); a few seconds per repetition
+BENCHMARK_CAPTURE(settle3d, N1e6, 100, 100, 100, 200)
+    ->Unit(benchmark::kMillisecond)->Iterations(100)->Repetitions(3);
+BENCHMARK_CAPTURE(thermal3d, N1e6, 100, 100, 100, 200)
+    ->Unit(benchmark::kMillisecond)->Iterations(100)->Repetitions(3);
 
 BENCHMARK_MAIN();
