@@ -39,6 +39,7 @@
 #include <grain/conditions/regions.hpp>
 #include <grain/conditions/variable_property.hpp>
 #include <grain/contact/frame.hpp>
+#include <grain/contact/history.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/observer.hpp>
 #include <grain/core/stages.hpp>
@@ -51,6 +52,14 @@
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/search.hpp>
+#include <grain/simulation/lifecycle.hpp>
+#include <grain/simulation/pair_table.hpp>
+#include <grain/simulation/parallel.hpp>
+#include <grain/simulation/params.hpp>
+#include <grain/simulation/stage_hooks.hpp>
+#include <grain/simulation/time_step.hpp>
+#include <grain/simulation/variable_properties.hpp>
+#include <grain/simulation/wall_loads.hpp>
 #include <grain/thermal/cells.hpp>
 #include <grain/walls/walls.hpp>
 
@@ -78,162 +87,6 @@
 #endif
 
 namespace grain {
-namespace bodies {
-struct BodyLink; // bodies/coupling.hpp: a particle moved by a rigid-body system
-}
-namespace detail {
-/// Zero if a and b have the same bytes, without a branch (memcmp may branch after each word).
-template <class T>
-GRAIN_INLINE std::uint64_t byte_difference(const T& a, const T& b) {
-  static_assert(std::is_trivially_copyable_v<T>);
-  const auto* x = reinterpret_cast<const unsigned char*>(&a);
-  const auto* y = reinterpret_cast<const unsigned char*>(&b);
-  std::uint64_t diff = 0;
-  std::size_t k = 0;
-  for (; k + 8 <= sizeof(T); k += 8) {
-    std::uint64_t u, v;
-    std::memcpy(&u, x + k, 8);
-    std::memcpy(&v, y + k, 8);
-    diff |= u ^ v;
-  }
-  for (; k < sizeof(T); ++k)
-    diff |= static_cast<std::uint64_t>(x[k] ^ y[k]);
-  return diff;
-}
-
-/// Waits until another thread has set `flag` (release) to non-zero; its writes before are then
-/// visible. Spins briefly, then yields (more threads than cores).
-inline void wait_for(const std::atomic<int>& flag) {
-  for (int spins = 0; flag.load(std::memory_order_acquire) == 0;) {
-    if (spins < 64)
-      ++spins;
-    else
-      std::this_thread::yield();
-  }
-}
-/// The calling thread's share [lo, hi) of n items, contiguous and in thread order, as
-/// schedule(static) splits them.
-inline std::pair<long, long> static_share(long n) {
-#ifdef _OPENMP
-  const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-#else
-  const long threads = 1, t = 0;
-#endif
-  const long q = n / threads, r = n % threads;
-  const long lo = t * q + std::min(t, r);
-  return {lo, lo + q + (t < r ? 1 : 0)};
-}
-/// The number of steps of length dt that cover `duration` [s]: rounded up, but a quotient within
-/// rounding of a whole number (relative 1e-12, at least 1e-9 steps) counts as that number.
-inline long steps_for(double duration, double dt) {
-  const double q = duration / dt;
-  return static_cast<long>(std::ceil(q - std::max(1e-9, 1e-12 * q)));
-}
-/// x, or +inf if x is NaN: a maximum taken with std::max would drop a NaN.
-inline double nan_as_inf(double x) { return x == x ? x : std::numeric_limits<double>::infinity(); }
-} // namespace detail
-
-/// What a particle is made of and where it starts (SI units).
-template <int D>
-struct ParticleSpec {
-  Vec<D> position = Vec<D>::Zero();      ///< centre [m]
-  double radius = 0.0;                   ///< [m], > 0
-  std::uint32_t material = 0;            ///< index returned by add_material
-  Vec<D> velocity = Vec<D>::Zero();      ///< [m/s]
-  Angular<D> omega = zero<Angular<D>>(); ///< angular velocity [rad/s]
-  /// Initial temperature [K] (thermal simulations only); NaN = SimulationParams::initial_temperature.
-  double temperature = std::numeric_limits<double>::quiet_NaN();
-  bool fixed = false; ///< if true the particle keeps its velocities (forces do not move it)
-  /// Time [s] from which the particle exists; before it, it is inactive (stored, but invisible to
-  /// contacts, output and statistics). -inf (default) = from the start.
-  double creation_time = -std::numeric_limits<double>::infinity();
-  /// Time [s] at which the particle is removed, with its contacts; +inf (default) = never.
-  double destruction_time = std::numeric_limits<double>::infinity();
-  std::int64_t id = -1; ///< -1 = next free id
-};
-
-/// What a simulation advances.
-enum class Analysis {
-  automatic,         ///< thermo-mechanical if the contact has a conduction model, else mechanical
-  mechanical,        ///< motion only; temperatures (if any) stay constant
-  thermal,           ///< temperatures only; particles never move, conductances computed once
-  thermo_mechanical, ///< motion and temperatures every step
-};
-
-namespace detail {
-template <class T>
-concept integrator_option = integrate::Integrator<T>;
-template <class T>
-concept convection_option = ConvectionModel<T>;
-
-/// The first of Ts satisfying the predicate P, or Default.
-template <template <class> class P, class Default, class... Ts>
-struct pick {
-  using type = Default;
-};
-template <template <class> class P, class Default, class T, class... Ts>
-struct pick<P, Default, T, Ts...> {
-  using type = std::conditional_t<P<T>::value, T, typename pick<P, Default, Ts...>::type>;
-};
-template <class T>
-struct is_integrator : std::bool_constant<integrator_option<T>> {};
-template <class T>
-struct is_convection : std::bool_constant<convection_option<T>> {};
-template <class T>
-struct is_cell_method : std::bool_constant<cells::CellSizeMethod<T>> {};
-template <class T>
-struct is_option
-    : std::bool_constant<integrator_option<T> || convection_option<T> || cells::CellSizeMethod<T> ||
-                         is_stages<T>::value || is_fields<T>::value> {};
-} // namespace detail
-
-/// Global settings of a simulation.
-template <int D, class Contact, class SearchT, class Convection = convection::None,
-          class CellSize = cells::GlobalPorosity>
-struct SimulationParams {
-  double time_step = 0.0; ///< [s]; 0 = automatic (auto_time_step_factor x critical step)
-  double auto_time_step_factor = 0.1;
-  /// Impact velocity [m/s] used to estimate the stiffness of velocity-dependent contact laws in
-  /// the critical time step (the largest of this and twice the fastest initial particle speed).
-  double reference_velocity = 1.0;
-  Vec<D> gravity = Vec<D>::Zero();         ///< [m/s^2]
-  double damping_translational = 0.0;      ///< global damping force -c v, c in [N s/m]
-  double damping_rotational = 0.0;         ///< global damping torque -c w, c in [N m s]
-  typename Contact::Params contact{};      ///< coefficients of the contact models
-  typename SearchT::Params search{};       ///< neighbour-search settings
-
-  // thermal settings (used when the contact has a conduction model)
-  Analysis analysis = Analysis::automatic;
-  double initial_temperature = 293.15;     ///< default particle temperature [K]
-  /// Surrounding / interstitial fluid (convection, conduction through the fluid).
-  Fluid<D> fluid{};
-  typename Convection::Params convection{}; ///< coefficients of the convection model
-  /// Fraction in [0, 1] of the power dissipated at contacts (viscous normal damping eta
-  /// (d delta/dt)^2 and sliding friction -F_t . v_t) that heats the two partners, half each (a
-  /// wall's half leaves the system). 0 (default): dissipation makes no heat. Hysteresis of
-  /// plastic normal models, sticking tangential dashpots and rolling resistance are not counted.
-  double dissipation_heating = 0.0;
-  /// If true, the simulation accumulates the energy dissipated by the contacts and the global
-  /// damping (Simulation::dissipated_energy); off by default (it costs a few operations per
-  /// contact).
-  bool track_dissipation = false;
-  /// If true (default), particle orientations (3D: unit quaternions, 2D: angles) are integrated
-  /// from the angular velocities. No contact model reads them; they serve output (the VTK field
-  /// `orientation`) and checkpoints. False saves a rotation per particle and step (about 15 % of
-  /// a settling step of spheres); the orientations then stay where they were.
-  bool track_orientation = true;
-  /// Settings of the fluid-cell size method (Voronoi conduction models only).
-  typename CellSize::Params cells{};
-};
-
-/// Summary counters of a run (for the console summary and benchmarks).
-struct RunCounters {
-  long steps = 0;
-  long rebuilds = 0;
-  double wall_seconds = 0.0;
-  double particle_steps = 0.0;
-};
-
 template <class Shape, class SearchT, class Contact, class... Options>
 class Simulation {
   static_assert((detail::is_option<Options>::value && ...),
@@ -272,9 +125,10 @@ private:
   static_assert(ParticleShape<Shape>,
                 "grain::Simulation: the 1st argument must be a particle shape, grain::Disk (2D) "
                 "or grain::Sphere (3D)");
-  static_assert(search::Search<SearchT>,
+  static_assert(search::Search<SearchT, detail::dimension_of<Shape>>,
                 "grain::Simulation: the 2nd argument must be a neighbour search, "
-                "search::AllPairs, search::VerletList or search::CellList");
+                "search::AllPairs, search::VerletList or search::CellList, or a search of your "
+                "own with validate, skin, due and build (docs/concepts.md)");
   static_assert(ConvectionT::active == false || Contact::thermal,
                 "grain::Simulation: a convection model needs a thermal contact: give the "
                 "Interaction a conduction model such as conduction::BatchelorOBrien");
@@ -296,7 +150,7 @@ public:
   using V = Vec<D>;
   using A = Angular<D>;
   /// Loops over fewer particles than this run on one thread (a parallel region costs more).
-  static constexpr long parallel_threshold = 1000;
+  static constexpr long parallel_threshold = detail::parallel_threshold;
   /// The contact loop (rows from the last down) requests the data of the row 2 x prefetch_rows
   /// rows ahead, and of the partners beyond the chunk of the row prefetch_rows rows ahead...
   static constexpr long prefetch_rows = 16;
@@ -341,44 +195,20 @@ public:
       detail::require_positive("Fluid (convection)", "conductivity", params_.fluid.conductivity);
       detail::require_positive("Fluid (convection)", "heat_capacity", params_.fluid.heat_capacity);
     }
-    update_pairs();
   }
 
   // ---------------------------------------------------------------- set-up
   /// Adds a material; returns its index.
   std::uint32_t add_material(const Material& m) {
-    m.validate();
-    const auto n0 = materials_.size();
-    std::vector<PairOverride> grown((n0 + 1) * (n0 + 1));
-    for (std::size_t a = 0; a < n0; ++a)
-      for (std::size_t b = 0; b < n0; ++b) grown[a * (n0 + 1) + b] = overrides_[a * n0 + b];
-    overrides_.swap(grown);
-    std::vector<typename Contact::Params> grown_params((n0 + 1) * (n0 + 1), params_.contact);
-    for (std::size_t a = 0; a < n0; ++a)
-      for (std::size_t b = 0; b < n0; ++b)
-        grown_params[a * (n0 + 1) + b] = pair_params_[a * n0 + b];
-    pair_params_.swap(grown_params);
-    materials_.push_back(m);
-    update_pairs();
+    const auto k = table_.add_material(m);
     initialized_ = false;
-    return static_cast<std::uint32_t>(materials_.size() - 1);
+    return k;
   }
   /// Overrides mixed restitution / friction for one pair of materials.
   void set_pair(std::uint32_t a, std::uint32_t b, const PairOverride& o) {
-    check_material(a, "set_pair");
-    check_material(b, "set_pair");
-    // a negative value keeps the mixed one
-    detail::require(o.restitution < 0.0 || (o.restitution > 0.0 && o.restitution <= 1.0),
-                    "Simulation::set_pair", "restitution", o.restitution,
-                    "(0, 1], or < 0 for the mixed value");
-    for (const auto& [name, v] :
-         {std::pair{"friction", o.friction}, std::pair{"friction_static", o.friction_static},
-          std::pair{"rolling_friction", o.rolling_friction}})
-      detail::require(std::isfinite(v), "Simulation::set_pair", name, v,
-                      "[0, inf), or < 0 for the mixed value");
-    const auto n = materials_.size();
-    overrides_[a * n + b] = overrides_[b * n + a] = o;
-    update_pairs();
+    table_.check_material(a, "set_pair");
+    table_.check_material(b, "set_pair");
+    table_.set_override(a, b, o, "Simulation::set_pair");
     initialized_ = false;
   }
 
@@ -388,24 +218,18 @@ public:
   /// the third seed's GRANULAR command, for any contact model. Throws InputError naming the pair
   /// for invalid parameters or materials.
   void set_pair_parameters(std::uint32_t a, std::uint32_t b, const typename Contact::Params& p) {
-    check_material(a, "set_pair_parameters");
-    check_material(b, "set_pair_parameters");
-    try {
-      Contact::validate(p);
-    } catch (const InputError& e) {
-      throw InputError("Simulation::set_pair_parameters (materials '" + materials_[a].name +
-                       "' and '" + materials_[b].name + "'): " + e.what());
-    }
-    const auto n = materials_.size();
-    pair_params_[a * n + b] = pair_params_[b * n + a] = p;
-    resolve_pairs();
+    table_.check_material(a, "set_pair_parameters");
+    table_.check_material(b, "set_pair_parameters");
+    table_.set_parameters(a, b, p, "Simulation::set_pair_parameters");
     initialized_ = false;
   }
   /// The contact-model parameters of a pair of materials (SimulationParams::contact unless
   /// set_pair_parameters gave the pair its own).
   const typename Contact::Params& contact_params(std::size_t a, std::size_t b) const {
-    return pair_params_[a * materials_.size() + b];
+    return table_.parameters(a, b);
   }
+  /// The materials and the properties and contact parameters of their pairs.
+  const PairTable<Contact>& pair_table() const { return table_; }
 
   /// Adds a particle; returns its id. Throws InputError on bad input. A particle with a creation
   /// time later than the current time waits, inactive, until then.
@@ -417,7 +241,7 @@ public:
     // ids below next_id_ may be taken (an id at or above it is new)
     if (id < next_id_ &&
         (has_particle(id) ||
-         std::find(removed_ids_.begin(), removed_ids_.end(), id) != removed_ids_.end()))
+         life_.was_removed(id)))
       throw InputError(obj + ": id = " + std::to_string(id) +
                        " is invalid; valid: an id no other particle has or had (or -1 = next "
                        "free id)");
@@ -428,7 +252,7 @@ public:
     if (!all_finite(s.velocity))
       detail::require(false, obj, "velocity", to_text(s.velocity), "finite components");
     detail::require(all_finite(s.omega), obj, "omega", "(non-finite)", "finite components");
-    check_material(s.material, obj);
+    table_.check_material(s.material, obj);
     detail::require(!std::isnan(s.creation_time) &&
                         s.creation_time < std::numeric_limits<double>::infinity(),
                     obj, "creation_time", s.creation_time, "[-inf, inf) s");
@@ -449,9 +273,9 @@ public:
                          "unset, or give the Interaction a conduction model");
     }
     next_id_ = std::max(next_id_, id + 1);
-    if (std::isfinite(s.destruction_time)) doomed_.push_back({s.destruction_time, id});
+    if (std::isfinite(s.destruction_time)) life_.doomed.push_back({s.destruction_time, id});
     if (s.creation_time > time_) {
-      pending_.push_back(s);
+      life_.pending.push_back(s);
     } else {
       append_particle(s);
       groups_dirty_ = true;
@@ -464,12 +288,9 @@ public:
   /// between runs, or before the first. Its id is not used again (removed_ids). Throws
   /// InputError for an id that is not a particle of the simulation.
   void remove_particle(std::int64_t id) {
-    const auto pend = std::find_if(pending_.begin(), pending_.end(),
-                                   [&](const ParticleSpec<D>& s) { return s.id == id; });
-    if (pend != pending_.end()) {
-      pending_.erase(pend);
-      std::erase_if(doomed_, [&](const auto& d) { return d.second == id; });
-      removed_ids_.push_back(id);
+    if (life_.is_pending(id)) {
+      std::erase_if(life_.pending, [&](const ParticleSpec<D>& s) { return s.id == id; });
+      life_.forget(id);
       return;
     }
     if (!has_particle(id))
@@ -478,12 +299,11 @@ public:
     if (initialized_) {
       // as a destruction time that has come: the list is renumbered, the other contacts keep
       // their histories
-      doomed_.push_back({-std::numeric_limits<double>::infinity(), id});
+      life_.doomed.push_back({-std::numeric_limits<double>::infinity(), id});
       lifecycle();
       return;
     }
-    std::erase_if(doomed_, [&](const auto& d) { return d.second == id; });
-    removed_ids_.push_back(id);
+    life_.forget(id);
     if (list_.rows() == 0) { // no list yet: nothing refers to the indices
       std::vector<std::uint32_t> kept;
       for (std::size_t i = 0; i < particles_.size(); ++i)
@@ -491,13 +311,13 @@ public:
       keep_particles(kept);
       return;
     }
-    removal_requests_.push_back(id); // carried out by initialize, which maps the old list
+    life_.removal_requests.push_back(id); // carried out by initialize, which maps the old list
   }
 
 private:
   /// Appends a validated particle to the arrays.
   void append_particle(const ParticleSpec<D>& s) {
-    const Material& m = materials_[s.material];
+    const Material& m = table_.material(s.material);
     const double mass = m.density * shape_.volume(s.radius);
     const double inertia = shape_.inertia_factor() * mass * s.radius * s.radius;
     auto& p = particles_;
@@ -515,8 +335,7 @@ private:
     p.inv_inertia.push_back(s.fixed ? 0.0 : 1.0 / inertia);
     p.material.push_back(s.material);
     std::apply([](auto&... f) { (f.emplace_back(), ...); }, fields_);
-    if (var_pairs_)
-      for (auto& o : over_) o.push_back(std::numeric_limits<double>::quiet_NaN());
+    vprops_.append();
     if constexpr (thermal) {
       const double c = mass * m.heat_capacity;
       p.temperature.push_back(s.temperature);
@@ -538,7 +357,7 @@ public:
     w.geometry = geometry;
     w.options = options;
     w.validate();
-    check_material(options.material, "Wall '" + options.name + "'");
+    table_.check_material(options.material, "Wall '" + options.name + "'");
     w.pivot = options.has_pivot ? options.pivot : Wall<D>::default_pivot(w.geometry);
     w.take_snapshot();
     walls_.push_back(w);
@@ -603,7 +422,7 @@ public:
         throw InputError(obj + ": wall = " + std::to_string(w) + " is invalid; valid range: [0, " +
                          std::to_string(walls_.size()) + ") (indices returned by add_wall)");
     std::vector<std::int64_t> known = particles_.id;
-    for (const auto& sp : pending_) known.push_back(sp.id);
+    for (const auto& sp : life_.pending) known.push_back(sp.id);
     std::sort(known.begin(), known.end());
     for (const auto id : particle_ids)
       if (!std::binary_search(known.begin(), known.end(), id))
@@ -653,7 +472,7 @@ public:
       particles_.velocity[i] = v;
       particles_.omega[i] = w;
     }
-    for (auto& s : pending_)
+    for (auto& s : life_.pending)
       if (in_group(group, s.id)) {
         s.velocity = v;
         s.omega = w;
@@ -669,7 +488,7 @@ public:
                     temperature, "[0, inf) K");
     if constexpr (thermal) {
       for (const auto i : group_indices(group)) particles_.temperature[i] = temperature;
-      for (auto& s : pending_)
+      for (auto& s : life_.pending)
         if (in_group(group, s.id)) s.temperature = temperature;
     }
   }
@@ -781,25 +600,24 @@ public:
                         double t_end = std::numeric_limits<double>::infinity()) {
     TimedRegion<D> r{region, t_begin, t_end};
     r.validate("Simulation::set_bounding_box");
-    bounding_box_ = r;
+    life_.bounding_box = r;
   }
   /// Particles whose centre enters this region are removed, while t_begin <= t <= t_end [s].
   void add_sink(const Region<D>& region,
                 double t_begin = -std::numeric_limits<double>::infinity(),
                 double t_end = std::numeric_limits<double>::infinity()) {
     TimedRegion<D> r{region, t_begin, t_end};
-    r.validate("Simulation::add_sink " + std::to_string(sinks_.size()));
-    sinks_.push_back(r);
+    r.validate("Simulation::add_sink " + std::to_string(life_.sinks.size()));
+    life_.sinks.push_back(r);
   }
   /// Ids of the particles removed so far (bounding box, sinks, destruction time), in order.
-  const std::vector<std::int64_t>& removed_ids() const { return removed_ids_; }
+  const std::vector<std::int64_t>& removed_ids() const { return life_.removed_ids; }
   /// Particles added with a creation time still in the future.
-  std::size_t inactive_count() const { return pending_.size(); }
+  std::size_t inactive_count() const { return life_.pending.size(); }
   /// True if a particle with this id is active (present in the arrays).
   bool is_active(std::int64_t id) const {
     return std::find(particles_.id.begin(), particles_.id.end(), id) != particles_.id.end() &&
-           std::find(removal_requests_.begin(), removal_requests_.end(), id) ==
-               removal_requests_.end();
+           !life_.removal_requested(id);
   }
 
   // ---------------------------------------------------------------- time step
@@ -807,9 +625,7 @@ public:
   double rayleigh_time() const {
     double t = std::numeric_limits<double>::infinity();
     for_each_size([&](double r, std::uint32_t k, double) {
-      const Material m = bounding_material(k);
-      const double g = m.shear_modulus();
-      t = std::min(t, std::numbers::pi * r * std::sqrt(m.density / g) / (0.1631 * m.poisson + 0.8766));
+      t = std::min(t, time_step::rayleigh(r, bounding_material(k)));
     });
     return t;
   }
@@ -817,11 +633,11 @@ public:
   /// Contact-stiffness limit 2 sqrt(m*/k) of the stiffest, lightest contact that can occur [s]
   /// (the stability limit of the undamped oscillator for the symplectic schemes).
   double contact_time_step() const {
-    if (particles_.size() + pending_.size() == 0) return std::numeric_limits<double>::infinity();
+    if (particles_.size() + life_.pending.size() == 0) return std::numeric_limits<double>::infinity();
     const double v = reference_speed();
     double t = std::numeric_limits<double>::infinity();
     // smallest particle of each material
-    const auto nm = materials_.size();
+    const auto nm = table_.size();
     std::vector<double> rmin(nm, std::numeric_limits<double>::infinity()), mmin(nm, 0.0);
     for_each_size([&](double r, std::uint32_t k, double mass) {
       if (r < rmin[k]) {
@@ -840,12 +656,12 @@ public:
           const double me = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
           const double k =
               Contact::stiffness_estimate(bounding_pair(a, b), contact_params(a, b), re, me, v);
-          if (k > 0) t = std::min(t, 2.0 * std::sqrt(me / k));
+          t = std::min(t, time_step::oscillator(me, k));
         }
         if (wall_material[b]) {
           const double k = Contact::stiffness_estimate(bounding_pair(a, b), contact_params(a, b),
                                                        rmin[a], mmin[a], v);
-          if (k > 0) t = std::min(t, 2.0 * std::sqrt(mmin[a] / k));
+          t = std::min(t, time_step::oscillator(mmin[a], k));
         }
       }
     }
@@ -862,8 +678,7 @@ public:
     double t = std::numeric_limits<double>::infinity();
     if constexpr (thermal) {
       for_each_size([&](double r, std::uint32_t k, double) {
-        const Material m = bounding_material(k);
-        if (m.conductivity > 0) t = std::min(t, r * r * m.density * m.heat_capacity / m.conductivity);
+        t = std::min(t, time_step::diffusion(r, bounding_material(k)));
       });
     }
     return t;
@@ -871,10 +686,8 @@ public:
 
   /// Stability limit of the explicit temperature update over the contacts of the current
   /// neighbour list (after initialisation; infinite before): min over particles of
-  /// C_i / (sum_j H_ij + h_i S_i / 2) [s], h_i S_i the convective conductance.
-  /// Forward Euler is stable for dt < 2/lambda_max, lambda_max the largest eigenvalue of
-  /// C^-1 L (L the conductance Laplacian); by Gershgorin's theorem lambda_max <= max_i
-  /// 2 sum_j H_ij / C_i, so this bound is sufficient, and it is exact for two particles.
+  /// C_i / (sum_j H_ij + h_i S_i / 2) [s], h_i S_i the convective conductance (see
+  /// simulation/time_step.hpp).
   double conduction_time_step() const {
     double t = std::numeric_limits<double>::infinity();
     if constexpr (thermal) {
@@ -887,17 +700,17 @@ public:
       // convection adds h S to the diagonal of C^-1 L only: half of it to the row sum
       if constexpr (ConvectionT::active)
         for (std::size_t i = 0; i < h.size(); ++i) h[i] += 0.5 * convection_conductance(i);
-      for (std::size_t i = 0; i < h.size(); ++i)
-        if (h[i] > 0) t = std::min(t, particles_.heat_capacity[i] / h[i]);
+      t = time_step::conduction(particles_.heat_capacity, h);
     }
     return t;
   }
 
-  /// The critical time step [s]: the mechanical one if particles move, and the conduction limit
+  /// The critical time step [s]: the mechanical one if forces move particles (a moving analysis
+  /// with at least one particle that is not fixed, present or to come), and the conduction limit
   /// if temperatures advance.
   double critical_time_step() const {
     double t = std::numeric_limits<double>::infinity();
-    if (moves()) t = mechanical_time_step();
+    if (forces_move()) t = mechanical_time_step();
     if (heats()) t = std::min(t, conduction_time_step());
     return t;
   }
@@ -909,6 +722,17 @@ public:
   }
   /// True if particles move (every analysis but thermal).
   bool moves() const { return analysis() != Analysis::thermal; }
+  /// True if forces move particles: the analysis moves them and some particle, present or to
+  /// come, is not fixed (ParticleSpec::fixed). Only then does the mechanical limit bound the
+  /// time step.
+  bool forces_move() const {
+    if (!moves()) return false;
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      if (!fixed_particle(i)) return true;
+    for (const auto& s : life_.pending)
+      if (!s.fixed) return true;
+    return false;
+  }
   /// True if temperatures advance (thermal and thermo-mechanical analyses).
   bool heats() const { return thermal && analysis() != Analysis::mechanical; }
 
@@ -926,12 +750,12 @@ public:
     // a re-initialisation (after adding particles, walls or materials) continues the time
     time_offset_ = time_;
     step0_ = step_;
-    if (materials_.empty() && (particles_.size() > 0 || !walls_.empty()))
+    if (table_.empty() && (particles_.size() > 0 || !walls_.empty()))
       throw InputError("Simulation: no material was added; add_material() first");
     if constexpr (thermal) {
       if (heats()) {
         for (std::size_t i = 0; i < particles_.size(); ++i) {
-          const Material& m = materials_[particles_.material[i]];
+          const Material& m = table_.material(particles_.material[i]);
           if (!(m.heat_capacity > 0))
             throw InputError("Material '" + m.name + "': heat_capacity = " +
                              detail::to_text(m.heat_capacity) +
@@ -946,11 +770,9 @@ public:
     r_max_ = 0.0;
     for (double r : particles_.radius)
       r_max_ = std::max(r_max_, r);
-    for (const auto& s : pending_)
+    for (const auto& s : life_.pending)
       r_max_ = std::max(r_max_, s.radius);
-    for (const auto& v : vprops_)
-      if (v.vp.property == Property::radius)
-        for (double r : v.vp.table->y()) r_max_ = std::max(r_max_, r);
+    r_max_ = std::max(r_max_, vprops_.largest_radius());
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
     cutoff_ = heats() ? largest_cutoff() : 0.0;
@@ -965,15 +787,15 @@ public:
     // taken out here
     std::vector<std::uint32_t> kept(particles_.size());
     std::iota(kept.begin(), kept.end(), 0u);
-    const bool renumbered = !removal_requests_.empty();
+    const bool renumbered = !life_.removal_requests.empty();
     if (renumbered) {
       collect_wall_loads(); // before the particles are renumbered
-      std::sort(removal_requests_.begin(), removal_requests_.end());
+      std::sort(life_.removal_requests.begin(), life_.removal_requests.end());
       std::erase_if(kept, [&](std::uint32_t i) {
-        return std::binary_search(removal_requests_.begin(), removal_requests_.end(),
+        return std::binary_search(life_.removal_requests.begin(), life_.removal_requests.end(),
                                   particles_.id[i]);
       });
-      removal_requests_.clear();
+      life_.removal_requests.clear();
       keep_particles(kept);
     }
     if (list_.rows() > 0 && (list_.rows() < particles_.size() || renumbered)) {
@@ -992,7 +814,7 @@ public:
       const bool at_conduction_limit = heats() && params_.time_step == conduction_time_step();
       if (params_.time_step > critical || at_conduction_limit) {
         std::string why;
-        if (moves())
+        if (forces_move())
           why += "Rayleigh time " + detail::to_text(rayleigh_time()) +
                  " s, contact limit 2 sqrt(m*/k) = " + detail::to_text(contact_time_step()) + " s";
         if (heats())
@@ -1022,11 +844,9 @@ public:
       if constexpr (IntegratorT::drift_before_forces) {
         // forces at the initial positions; histories are not advanced by this evaluation (only
         // the entries with a history are kept aside: at a first start there are none)
-        auto saved = keep_histories(history_);
-        auto saved_w = keep_histories(wall_history_);
+        const auto saved = hist_.save();
         compute_forces(time_, false);
-        restore_histories(history_, saved);
-        restore_histories(wall_history_, saved_w);
+        hist_.restore_all(saved);
         call_stages<Hook::after_forces>();
       }
     }
@@ -1170,30 +990,27 @@ public:
     if constexpr (thermal) ar(p.temperature, p.heat_rate, p.heat_capacity, p.inv_heat_capacity);
     std::apply([&](auto&... f) { (ar(f), ...); }, fields_);
     // stages with state to keep across a restart visit it themselves
-    std::apply([&](auto&... st) { (serialize_stage(st, ar), ...); }, stages_);
+    detail::serialize_stages(stages_, ar);
     for (auto& w : walls_)
       ar(w.geometry, w.snapshot, w.pivot, w.options.velocity, w.options.omega, w.temperature);
     ar(list_.offsets, list_.partners, list_.wall_offsets, list_.walls, list_.max_span);
-    ar(history_, wall_history_, snapshot_);
+    ar(hist_.pair, hist_.wall, snapshot_);
     ar(dt_, time_, time_offset_, end_time_, r_max_, skin_, reach_, cutoff_, heat_on_);
     ar(static_pairs_, static_walls_, cell_pair_, cell_wall_, steps_since_cells_);
     ar(step_, steps_since_rebuild_, step0_, next_id_, gravity_now_);
-    ar(over_[0], over_[1], over_[2], over_[3], over_[4], over_[5]);
-    ar(pending_, doomed_, removed_ids_);
+    ar(vprops_.values[0], vprops_.values[1], vprops_.values[2], vprops_.values[3],
+       vprops_.values[4], vprops_.values[5]);
+    ar(life_.pending, life_.doomed, life_.removed_ids);
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
       find_fixed();
       interrupted_ = false; // a checkpoint holds whole steps
-      wall_loads_.assign(list_.walls.size(), WallLoad{});
-      wall_loads_pending_ = false;
-      wall_force_sum_.clear();
-      wall_torque_sum_.clear();
-      wall_contacts_.clear();
+      wall_loads_.clear(list_.walls.size());
       origin_.clear();
-      removal_requests_.clear(); // the state read is complete
+      life_.removal_requests.clear(); // the state read is complete
       groups_dirty_ = true;
-      if (var_pairs_ && initialized_) refresh_pair_cache();
+      if (vprops_.per_particle && initialized_) refresh_pair_cache();
     }
   }
 
@@ -1202,11 +1019,11 @@ public:
   Particles& particles() { return particles_; }
   const std::vector<Wall<D>>& walls() const { return walls_; }
   std::vector<Wall<D>>& walls() { return walls_; }
-  const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<Material>& materials() const { return table_.materials(); }
   const Params& params() const { return params_; }
   const Shape& shape() const { return shape_; }
   const NeighborList& neighbor_list() const { return list_; }
-  const std::vector<History>& histories() const { return history_; }
+  const std::vector<History>& histories() const { return hist_.pair; }
   double time() const { return time_; }
   long step_count() const { return step_; }
   /// True once initialize() has run for the current set-up.
@@ -1256,14 +1073,14 @@ public:
   V wall_force(std::size_t w) const {
     check_wall(w, "wall_force");
     collect_wall_loads();
-    return w < wall_force_sum_.size() ? wall_force_sum_[w] : V(V::Zero());
+    return wall_loads_.force(w);
   }
   /// Torque the particles exert on wall w about its pivot at the last force evaluation [N m]
   /// (forces at the contact points plus the couples of rolling resistance).
   A wall_torque(std::size_t w) const {
     check_wall(w, "wall_torque");
     collect_wall_loads();
-    return w < wall_torque_sum_.size() ? wall_torque_sum_[w] : zero<A>();
+    return wall_loads_.torque(w);
   }
   /// Visits every touching particle-wall contact of the last force evaluation with the forces
   /// that were applied: f(particle id, wall index, point [m], force on the wall [N]); used to
@@ -1271,7 +1088,7 @@ public:
   template <class F>
   void for_each_wall_load(F&& f) const {
     collect_wall_loads();
-    for (const auto& c : wall_contacts_)
+    for (const auto& c : wall_loads_.contacts())
       f(c.id, static_cast<std::size_t>(c.wall), c.point, c.force);
   }
   std::size_t size() const { return particles_.size(); }
@@ -1294,41 +1111,20 @@ public:
 
   /// Effective properties of two materials.
   const PairProperties& pair_properties(std::size_t a, std::size_t b) const {
-    return pairs_[a * materials_.size() + b];
+    return table_.properties(a, b);
   }
   /// The material of particle i (current index) with its variable properties applied.
   Material material_of(std::size_t i) const {
-    Material m = materials_[particles_.material[i]];
-    if (var_pairs_) {
-      auto take = [&](const std::vector<double>& o, double& v) {
-        if (!std::isnan(o[i])) v = o[i];
-      };
-      take(over_[0], m.young);
-      take(over_[1], m.poisson);
-      take(over_[2], m.restitution);
-      take(over_[3], m.friction);
-      take(over_[4], m.rolling_friction);
-      take(over_[5], m.conductivity);
-      if (!std::isnan(over_[0][i]) || !std::isnan(over_[1][i])) m.shear = 0.0; // G from E, nu
-      // a softened modulus keeps its ratio to the real one; a static friction below the new
-      // sliding friction is raised to it by the mixing rule
-      const Material& base = materials_[particles_.material[i]];
-      if (!std::isnan(over_[0][i]) && base.young_real > 0.0)
-        m.young_real = base.young_real * (m.young / base.young);
-    }
-    return m;
+    return vprops_.material_of(i, table_.material(particles_.material[i]));
   }
   /// Effective properties of the contact of particle i with particle j (wall = false) or with
   /// wall j (wall = true), with variable properties applied.
   PairProperties contact_pair(std::size_t i, std::size_t j, bool wall) const {
-    const auto nm = materials_.size();
     const auto mi = particles_.material[i];
     const auto mj = wall ? walls_[j].options.material : particles_.material[j];
-    if (!var_pairs_) return pairs_[mi * nm + mj];
-    PairProperties pp = PairProperties::mix(material_of(i), wall ? materials_[mj] : material_of(j),
-                                            overrides_[mi * nm + mj]);
-    pp.fluid_conductivity = params_.fluid.conductivity;
-    return pp;
+    const auto k = table_.index(mi, mj);
+    if (!vprops_.per_particle) return table_.properties(k);
+    return table_.mix_of(material_of(i), wall ? table_.material(mj) : material_of(j), k);
   }
 
   /// Adds a property that follows a table of temperature, time or speed for the particles of a
@@ -1346,12 +1142,7 @@ public:
         throw InputError(std::string("VariableProperty: property = ") +
                          property_name(vp.property) +
                          " is invalid without a thermal state; valid: mechanical properties");
-    if (is_contact_property(vp.property) && !var_pairs_) {
-      var_pairs_ = true;
-      resolve_pairs();
-      for (auto& o : over_) o.assign(particles_.size(), std::numeric_limits<double>::quiet_NaN());
-    }
-    vprops_.push_back({std::move(vp), g});
+    if (vprops_.add(std::move(vp), g, particles_.size())) table_.set_per_particle(true);
     initialized_ = false;
   }
 
@@ -1397,16 +1188,16 @@ public:
       }
     };
     for (std::size_t i = 0; i < p.size(); ++i) {
-      for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+      for (const auto e : list_.pair_entries(i)) {
         const auto j = list_.partners[e];
         if (!touching_pair(i, j, g)) continue;
-        visit(i, j, false, contact_pair(i, j, false), history_at(history_, e),
+        visit(i, j, false, contact_pair(i, j, false), history_at(hist_.pair, e),
               cell_radius_pair(e));
       }
-      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+      for (const auto e : list_.wall_entries(i)) {
         const auto w = list_.walls[e];
         if (!touching_wall(i, w, g)) continue;
-        visit(i, w, true, contact_pair(i, w, true), history_at(wall_history_, e),
+        visit(i, w, true, contact_pair(i, w, true), history_at(hist_.wall, e),
               cell_radius_wall(e));
       }
     }
@@ -1429,14 +1220,14 @@ public:
         c.omega_rel = c.slip_omega_rel = zero<A>();
       };
       for (std::size_t i = 0; i < p.size(); ++i) {
-        for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+        for (const auto e : list_.pair_entries(i)) {
           const auto j = list_.partners[e];
           double H = 0.0;
           if (touching_pair(i, j, g)) {
             at_rest(g);
             const PairProperties pair = contact_pair(i, j, false);
             const auto& cp = contact_params(p.material[i], p.material[j]);
-            History h = history_at(history_, e);
+            History h = history_at(hist_.pair, e);
             auto r = Contact::evaluate(g, pair, cp, h, dt_);
             H = Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_pair(e));
           } else if constexpr (Contact::indirect) {
@@ -1444,7 +1235,7 @@ public:
           }
           if (H != 0.0) f(i, static_cast<std::size_t>(j), false, H);
         }
-        for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+        for (const auto e : list_.wall_entries(i)) {
           const auto w = list_.walls[e];
           if (!wall_conducts(w)) continue;
           double H = 0.0;
@@ -1452,7 +1243,7 @@ public:
             at_rest(g);
             const PairProperties pair = contact_pair(i, w, true);
             const auto& cp = contact_params(p.material[i], walls_[w].options.material);
-            History h = history_at(wall_history_, e);
+            History h = history_at(hist_.wall, e);
             auto r = Contact::evaluate(g, pair, cp, h, dt_);
             H = Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_wall(e));
           } else if constexpr (Contact::indirect) {
@@ -1471,9 +1262,9 @@ public:
     std::size_t pp = 0, pw = 0;
     ContactGeometry<D> g;
     for (std::size_t i = 0; i < particles_.size(); ++i) {
-      for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e)
+      for (const auto e : list_.pair_entries(i))
         pp += touching_pair(i, list_.partners[e], g);
-      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e)
+      for (const auto e : list_.wall_entries(i))
         pw += touching_wall(i, list_.walls[e], g);
     }
     return {pp, pw};
@@ -1542,50 +1333,23 @@ private:
   /// Largest gap across which heat flows over all pairs of materials [m].
   double largest_cutoff() const {
     double c = Contact::cutoff(params_.contact, r_max_);
-    for (const auto& cp : pair_params_)
+    for (const auto& cp : table_.all_parameters())
       c = std::max(c, Contact::cutoff(cp, r_max_));
     return c;
-  }
-  void update_pairs() {
-    const auto nm = materials_.size();
-    pairs_.resize(nm * nm);
-    for (std::size_t a = 0; a < nm; ++a)
-      for (std::size_t b = 0; b < nm; ++b)
-        pairs_[a * nm + b] =
-            PairProperties::mix(materials_[a], materials_[b], overrides_[a * nm + b]);
-    for (auto& pp : pairs_) pp.fluid_conductivity = params_.fluid.conductivity;
-    resolve_pairs();
-  }
-  /// The contact parameters of each pair type with their per-pair constants worked out (left
-  /// as given while a variable property changes contact properties per particle).
-  void resolve_pairs() {
-    pair_resolved_.resize(pair_params_.size());
-    for (std::size_t k = 0; k < pair_params_.size(); ++k)
-      pair_resolved_[k] =
-          var_pairs_ ? pair_params_[k] : Contact::resolve(pair_params_[k], pairs_[k]);
   }
   static std::string to_text(const V& v) {
     std::string s = "(";
     for (int d = 0; d < D; ++d) s += detail::to_text(v[d]) + (d + 1 < D ? ", " : ")");
     return s;
   }
-  void check_material(std::uint32_t m, const std::string& obj) const {
-    if (m >= materials_.size())
-      throw InputError(obj + ": material = " + std::to_string(m) + " is invalid; valid range: [0, " +
-                       std::to_string(materials_.size()) + ") (indices returned by add_material)");
-  }
   /// Visits (radius, material, mass) of every active and inactive particle.
   /// With variable properties, the smallest radius and density and the largest Young's modulus
   /// their tables reach bound these values (for the time step).
   template <class F>
   void for_each_size(F&& f) const {
-    double rb = std::numeric_limits<double>::infinity();
-    bool bounded = false;
-    for (const auto& v : vprops_) {
-      if (v.vp.property == Property::radius)
-        for (double y : v.vp.table->y()) rb = std::min(rb, y);
-      bounded = bounded || v.vp.property == Property::radius || v.vp.property == Property::density;
-    }
+    const auto bound = vprops_.radius_bound();
+    const double rb = bound.first;
+    const bool bounded = bound.second;
     auto visit = [&](double r, std::uint32_t k, double mass) {
       if (bounded) {
         const double r2 = std::min(r, rb);
@@ -1597,34 +1361,20 @@ private:
     };
     for (std::size_t i = 0; i < particles_.size(); ++i)
       visit(particles_.radius[i], particles_.material[i], particles_.mass[i]);
-    for (const auto& s : pending_)
-      visit(s.radius, s.material, materials_[s.material].density * shape_.volume(s.radius));
+    for (const auto& s : life_.pending)
+      visit(s.radius, s.material, table_.material(s.material).density * shape_.volume(s.radius));
   }
   Material bounding_material(std::uint32_t k) const {
-    Material m = materials_[k];
-    for (const auto& v : vprops_) {
-      const auto& y = v.vp.table->y();
-      if (v.vp.property == Property::young) {
-        m.young = std::max(m.young, *std::max_element(y.begin(), y.end()));
-        m.shear = 0.0;
-      } else if (v.vp.property == Property::density) {
-        m.density = std::min(m.density, *std::min_element(y.begin(), y.end()));
-      } else if (v.vp.property == Property::conductivity) {
-        m.conductivity = std::max(m.conductivity, *std::max_element(y.begin(), y.end()));
-      } else if (v.vp.property == Property::heat_capacity) {
-        m.heat_capacity = std::min(m.heat_capacity, *std::min_element(y.begin(), y.end()));
-      }
-    }
-    return m;
+    return vprops_.bounding_material(table_.material(k));
   }
   PairProperties bounding_pair(std::uint32_t a, std::uint32_t b) const {
     if (vprops_.empty()) return pair_properties(a, b);
     return PairProperties::mix(bounding_material(a), bounding_material(b),
-                               overrides_[a * materials_.size() + b]);
+                               table_.override_of(a, b));
   }
   bool has_particle(std::int64_t id) const {
     if (is_active(id)) return true;
-    for (const auto& s : pending_)
+    for (const auto& s : life_.pending)
       if (s.id == id) return true;
     return false;
   }
@@ -1652,7 +1402,7 @@ private:
   double reference_speed() const {
     double v = 0.0;
     for (const auto& u : particles_.velocity) v = std::max(v, u.norm());
-    for (const auto& s : pending_) v = std::max(v, s.velocity.norm());
+    for (const auto& s : life_.pending) v = std::max(v, s.velocity.norm());
     for (const auto& w : walls_) v = std::max(v, w.options.velocity.norm());
     return std::max(params_.reference_velocity, 2.0 * v);
   }
@@ -1691,15 +1441,16 @@ private:
       g.m_eff = effective_mass(i, j, g.m_eff);
   }
   /// True if particle i is fixed (ParticleSpec::fixed): it moves with its velocities whatever the
-  /// forces, like a wall. Not a clump member or a particle moved by a rigid-body system, whose
-  /// inverse mass is 0 too, but which move under their contact forces.
+  /// forces, like a wall. Not a particle that a field marks as driven (field_traits: a clump
+  /// member, a particle moved by a rigid-body system), whose inverse mass is 0 too, but which
+  /// moves under its contact forces.
   bool fixed_particle(std::size_t i) const {
     if (particles_.inv_mass[i] != 0.0) return false;
-    if constexpr (FieldStore::template contains<ClumpMember>)
-      if (std::get<std::vector<ClumpMember>>(fields_)[i].clump >= 0) return false;
-    if constexpr (FieldStore::template contains<bodies::BodyLink>)
-      if (std::get<std::vector<bodies::BodyLink>>(fields_)[i].body >= 0) return false;
-    return true;
+    return !std::apply(
+        [i](const auto&... f) {
+          return (detail::field_driven(f[i]) || ... || false);
+        },
+        fields_);
   }
   /// Effective mass of the contact of particles i and j [kg]: m_i m_j / (m_i + m_j) (m_eff), or
   /// the free partner's mass if the other is fixed (an infinite mass, as against a wall; the
@@ -1749,7 +1500,7 @@ private:
   /// True if heat crosses wall w: it has a temperature and its material a conductivity above 0
   /// (a wall of zero conductivity insulates, for direct and indirect conduction models alike).
   bool wall_conducts(std::size_t w) const {
-    return walls_[w].conducts() && materials_[walls_[w].options.material].conductivity > 0.0;
+    return walls_[w].conducts() && table_.material(walls_[w].options.material).conductivity > 0.0;
   }
 
   /// Throws NumericalError naming the first particle whose position (or temperature) is not
@@ -1788,7 +1539,7 @@ private:
   void require_distinct_centres() const {
     const auto& p = particles_;
     for (std::size_t i = 0; i + 1 < list_.offsets.size(); ++i)
-      for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+      for (const auto e : list_.pair_entries(i)) {
         const auto j = list_.partners[e];
         if (p.position[i] != p.position[j]) [[likely]]
           continue;
@@ -1802,56 +1553,6 @@ private:
       }
   }
 
-  /// The entries of `hist` that are not blank, with their indices.
-  static std::vector<std::pair<std::size_t, History>>
-  keep_histories(const std::vector<History>& hist) {
-    std::vector<std::pair<std::size_t, History>> kept;
-    if constexpr (!Contact::template stateless<D>)
-      for (std::size_t e = 0; e < hist.size(); ++e)
-        if (!blank(hist[e])) kept.emplace_back(e, hist[e]);
-    return kept;
-  }
-  /// Sets `hist` to the entries kept by keep_histories, blank elsewhere.
-  static void restore_histories(std::vector<History>& hist,
-                                const std::vector<std::pair<std::size_t, History>>& kept) {
-    if constexpr (!Contact::template stateless<D>) {
-      std::fill(hist.begin(), hist.end(), History{});
-      for (const auto& [e, h] : kept)
-        hist[e] = h;
-    }
-  }
-
-  /// True if h is bytewise a value-initialised history: nothing to carry over. (A history equal
-  /// in value but not in bytes, e.g. with -0.0, counts as not blank: it is merely kept.)
-  static bool blank(const History& h) {
-    static_assert(std::is_trivially_copyable_v<History>,
-                  "grain: a model's per-contact History must be trivially copyable");
-    static const History zero{};
-    return detail::byte_difference(h, zero) == 0;
-  }
-  /// Removes the entries with a blank history from a CSR list and its histories, in place, and
-  /// frees the space.
-  static void drop_blank_entries(std::vector<std::uint32_t>& offsets,
-                                 std::vector<std::uint32_t>& entries, std::vector<History>& hist) {
-    if (hist.size() != entries.size()) return; // no histories (first build)
-    std::uint32_t out = 0, begin = offsets[0];
-    for (std::size_t i = 0; i + 1 < offsets.size(); ++i) {
-      const std::uint32_t end = offsets[i + 1];
-      for (std::uint32_t e = begin; e < end; ++e)
-        if (!blank(hist[e])) {
-          entries[out] = entries[e];
-          hist[out] = hist[e];
-          ++out;
-        }
-      begin = end;
-      offsets[i + 1] = out;
-    }
-    entries.resize(out);
-    hist.resize(out);
-    entries.shrink_to_fit();
-    hist.shrink_to_fit();
-  }
-
   void rebuild() {
     auto& p = particles_;
     const std::size_t n = p.size();
@@ -1859,75 +1560,45 @@ private:
     require_finite_state(); // a non-finite position has no cell
     collect_wall_loads(); // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(list_);
-    std::vector<History> old_hist = std::move(history_), old_whist = std::move(wall_history_);
+    Histories old_hist = std::move(hist_);
     // the new list will be about as long as the old one (one allocation instead of doublings)
     list_.partners.reserve(old.partners.size() + old.partners.size() / 16);
     // only the entries with a history are looked up: the others go before the new list is made
     // (the peak memory of a rebuild holds both lists)
-    if constexpr (!Contact::template stateless<D>) {
-      drop_blank_entries(old.offsets, old.partners, old_hist);
-      drop_blank_entries(old.wall_offsets, old.walls, old_whist);
-    }
+    old_hist.shrink_to_contacts(old);
     std::vector<std::uint32_t> perm;
     const double reach = skin_ + cutoff_;
-    if constexpr (SearchT::sorts) {
-      if (params_.search.sort && n > 1) {
-        perm = search::detail::cell_order(p, 2.0 * r_max_ + reach);
+    if constexpr (search::Reorders<SearchT, D>) {
+      perm = SearchT::order(params_.search, p, reach, r_max_);
+      if (!perm.empty()) {
         p.permute(perm);
         permute_fields(perm);
-        if (var_pairs_)
-          for (auto& o : over_) permute_values(o, perm);
+        vprops_.permute(perm);
         if (prefilled_) {
           permute_values(vf_, perm);
           if constexpr (Contact::has_torque) permute_values(wf_, perm);
         }
       }
-      search::detail::build_cells(p, walls_, reach, r_max_, list_);
-    } else {
-      search::detail::build_all_pairs(p, walls_, reach, list_);
     }
-    if constexpr (FieldStore::template contains<ClumpMember>) drop_clump_internal_pairs();
+    SearchT::build(params_.search, p, walls_, reach, r_max_, list_);
+    if constexpr (!search::builtin<SearchT>) search::require_valid_list(list_, n, SearchT::name);
+    if constexpr (excluding_fields) drop_excluded_pairs();
     require_distinct_centres();
     // carry the histories of the old list over, by particle identity (origin_ maps the indices
     // after a removal or activation to those of the old list)
-    if constexpr (!Contact::template stateless<D>) {
-      history_.assign(list_.partners.size(), History{});
-      wall_history_.assign(list_.walls.size(), History{});
-      const bool mapped = !origin_.empty();
-      if (old.rows() == n || (mapped && old.rows() > 0)) {
-        auto old_of = [&](std::size_t k) -> std::uint32_t {
-          const std::size_t k0 = perm.empty() ? k : perm[k];
-          return mapped ? origin_[k0] : static_cast<std::uint32_t>(k0);
-        };
-        const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
-        for (long i = 0; i < nl; ++i) {
-          const std::uint32_t a = old_of(static_cast<std::size_t>(i));
-          if (a == none) continue;
-          for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
-            const std::uint32_t b = old_of(list_.partners[e]);
-            if (b == none) continue;
-            const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-            const auto first = old.partners.begin() + old.offsets[lo];
-            const auto last = old.partners.begin() + old.offsets[lo + 1];
-            const auto it = std::lower_bound(first, last, hi);
-            if (it != last && *it == hi) {
-              history_[e] = old_hist[static_cast<std::size_t>(it - old.partners.begin())];
-              if (a > b) Contact::template reverse<D>(history_[e]);
-            }
-          }
-          for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
-            for (auto o = old.wall_offsets[a]; o < old.wall_offsets[a + 1]; ++o)
-              if (old.walls[o] == list_.walls[e]) {
-                wall_history_[e] = old_whist[o];
-                break;
-              }
-          }
-        }
-      }
+    const bool mapped = !origin_.empty();
+    if (old.rows() == n || (mapped && old.rows() > 0)) {
+      auto old_of = [&](std::size_t k) -> std::uint32_t {
+        const std::size_t k0 = perm.empty() ? k : perm[k];
+        return mapped ? origin_[k0] : static_cast<std::uint32_t>(k0);
+      };
+      hist_.carry_over(old, old_hist, list_, old_of,
+                       [](History& h) { Contact::template reverse<D>(h); }, parallel_threshold);
+    } else {
+      hist_.reset(list_);
     }
     snapshot_ = p.position;
-    wall_loads_.assign(list_.walls.size(), WallLoad{});
+    wall_loads_.reset(list_.walls.size());
     // reach of a plane rotation: farthest particle from any wall pivot
     reach_ = 0.0;
     for (const auto& w : walls_) {
@@ -1939,7 +1610,7 @@ private:
     ++counters_.rebuilds;
     if (!perm.empty() || !origin_.empty()) groups_dirty_ = true;
     origin_.clear();
-    if (var_pairs_) refresh_pair_cache();
+    if (vprops_.per_particle) refresh_pair_cache();
     if (heat_on_) update_cells();
   }
 
@@ -1948,9 +1619,7 @@ private:
   void keep_particles(const std::vector<std::uint32_t>& kept) {
     particles_.permute(kept);
     permute_fields(kept);
-    if (var_pairs_)
-      for (auto& o : over_)
-        permute_values(o, kept);
+    vprops_.permute(kept);
     groups_dirty_ = true;
   }
 
@@ -1967,20 +1636,17 @@ private:
     for (std::size_t i = 0; i < n; ++i) eff[i] = material_of(i);
     pair_cache_.resize(list_.partners.size());
     wall_pair_cache_.resize(list_.walls.size());
-    const auto nm = materials_.size();
     const long nl = static_cast<long>(n);
 #pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
     for (long i = 0; i < nl; ++i) {
       const auto mi = p.material[i];
-      for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+      for (const auto e : list_.pair_entries(i)) {
         const auto j = list_.partners[e];
-        pair_cache_[e] = PairProperties::mix(eff[i], eff[j], overrides_[mi * nm + p.material[j]]);
-        pair_cache_[e].fluid_conductivity = params_.fluid.conductivity;
+        pair_cache_[e] = table_.mix_of(eff[i], eff[j], table_.index(mi, p.material[j]));
       }
-      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+      for (const auto e : list_.wall_entries(i)) {
         const auto mw = walls_[list_.walls[e]].options.material;
-        wall_pair_cache_[e] = PairProperties::mix(eff[i], materials_[mw], overrides_[mi * nm + mw]);
-        wall_pair_cache_[e].fluid_conductivity = params_.fluid.conductivity;
+        wall_pair_cache_[e] = table_.mix_of(eff[i], table_.material(mw), table_.index(mi, mw));
       }
     }
   }
@@ -1991,70 +1657,9 @@ private:
     if (vprops_.empty()) return false;
     ensure_groups();
     auto& p = particles_;
-    bool radius = false, contact = false, any = false, thermal_change = false;
-    for (const auto& [vp, g] : vprops_) {
-      if (!vp.active(time_) || (!all && step_ % vp.every != 0)) continue;
-      any = true;
-      const Table& tab = *vp.table;
-      std::size_t hint = 0;
-      for (const auto i : cond_.members[g]) {
-        if (only && !(*only)[i]) continue;
-        double x = 0.0;
-        switch (vp.variable) {
-        case Variable::temperature:
-          if constexpr (thermal) x = p.temperature[i];
-          break;
-        case Variable::time: x = time_; break;
-        case Variable::speed: x = p.velocity[i].norm(); break;
-        }
-        const double y = tab(x, hint);
-        const double vol = shape_.volume(p.radius[i]);
-        const double density = p.mass[i] / vol;
-        [[maybe_unused]] double c = 0.0; // specific heat capacity, kept
-        if constexpr (thermal) c = p.heat_capacity[i] / p.mass[i];
-        auto set_mass = [&](double mass) {
-          p.mass[i] = mass;
-          if (p.inv_mass[i] != 0.0) p.inv_mass[i] = 1.0 / mass;
-          p.inertia[i] = shape_.inertia_factor() * mass * p.radius[i] * p.radius[i];
-          if (p.inv_inertia[i] != 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
-          if constexpr (thermal) {
-            p.heat_capacity[i] = mass * c;
-            if (p.inv_heat_capacity[i] != 0.0) p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
-          }
-        };
-        switch (vp.property) {
-        case Property::radius:
-          if (y != p.radius[i]) {
-            p.radius[i] = y;
-            set_mass(density * shape_.volume(y));
-            radius = true;
-            thermal_change = true; // heat capacity and conductances change
-          }
-          break;
-        case Property::density:
-          set_mass(y * vol);
-          thermal_change = true; // the heat capacity m c changes
-          break;
-        case Property::heat_capacity:
-          thermal_change = true;
-          if constexpr (thermal) {
-            p.heat_capacity[i] = p.mass[i] * y;
-            p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
-          }
-          break;
-        case Property::young: over_[0][i] = y; contact = true; break;
-        case Property::poisson: over_[1][i] = y; contact = true; break;
-        case Property::restitution: over_[2][i] = y; contact = true; break;
-        case Property::friction: over_[3][i] = y; contact = true; break;
-        case Property::rolling_friction: over_[4][i] = y; contact = true; break;
-        case Property::conductivity:
-          over_[5][i] = y;
-          contact = true;
-          thermal_change = true;
-          break;
-        }
-      }
-    }
+    const auto changes = vprops_.apply(p, shape_, cond_.members, time_, step_, all, only);
+    const bool radius = changes.radius, contact = changes.contact, any = changes.any;
+    const bool thermal_change = changes.thermal;
     if (radius) {
       // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
       for (double r : p.radius) r_max_ = std::max(r_max_, r);
@@ -2192,7 +1797,7 @@ private:
       if (a % 2 == 1 && a < b && a != deferred) run(a);
       if (deferred >= 0) run(deferred);
     }
-    wall_loads_pending_ = !walls_.empty();
+    wall_loads_.written(!walls_.empty());
     const auto loads = global_loads(t);
     const V g = std::get<0>(loads);
     const double ct = std::get<1>(loads), cr = std::get<2>(loads);
@@ -2282,7 +1887,7 @@ private:
   /// particles, not yet rows in this sweep), so that their cache misses overlap with the work of
   /// the rows before it. Read intent only: a partner may belong to another thread's chunk.
   GRAIN_INLINE void prefetch_row(std::size_t i, std::size_t end) const {
-    for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+    for (const auto e : list_.pair_entries(i)) {
       const auto j = list_.partners[e];
       if (j >= end) prefetch_particle<0>(j);
     }
@@ -2297,8 +1902,8 @@ private:
     const auto e = list_.offsets[i]; // may be the end of the list (no entries left)
     GRAIN_PREFETCH(list_.partners.data() + e, 0);
     if constexpr (!Contact::template stateless<D>) {
-      GRAIN_PREFETCH(history_.data() + e, 1);
-      GRAIN_PREFETCH(history_.data() + std::min<std::size_t>(e + 2, history_.size()), 1);
+      GRAIN_PREFETCH(hist_.pair.data() + e, 1);
+      GRAIN_PREFETCH(hist_.pair.data() + std::min<std::size_t>(e + 2, hist_.pair.size()), 1);
     }
     // the rows' offsets into the list (read here, further ahead) and into the wall entries
     GRAIN_PREFETCH(list_.offsets.data() + (i >= 2 * prefetch_rows ? i - 2 * prefetch_rows : 0), 0);
@@ -2350,10 +1955,10 @@ private:
     pair_geometry_of(i, j, gc, vf, wf);
     if constexpr (predicts_velocity && Contact::has_torque)
       set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
-    const std::size_t mij = p.material[i] * materials_.size() + p.material[j];
-    const auto& pair = var_pairs_ ? pair_cache_[e] : pairs_[mij];
-    const auto& cp = pair_resolved_[mij];
-    History& h = hist(history_, e);
+    const std::size_t mij = table_.index(p.material[i], p.material[j]);
+    const auto& pair = vprops_.per_particle ? pair_cache_[e] : table_.properties(mij);
+    const auto& cp = table_.resolved(mij);
+    History& h = hist(hist_.pair, e);
     auto r = Contact::evaluate(gc, pair, cp, h, dt_);
     p.force[i] += r.force;
     p.force[j] -= r.force;
@@ -2385,11 +1990,11 @@ private:
     const auto& wf = force_omega();
     [[maybe_unused]] const bool heat = heat_on_;
     ContactGeometry<D> g;
-    for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
+    for (const auto e : list_.wall_entries(i)) {
       const auto w = list_.walls[e];
       if (!touching_wall(i, w, g, vf, wf)) {
-        if constexpr (!Contact::template stateless<D>) wall_history_[e] = History{};
-        wall_loads_[e] = WallLoad{};
+        if constexpr (!Contact::template stateless<D>) hist_.wall[e] = History{};
+        wall_loads_.entries[e] = {};
         if constexpr (Contact::indirect) {
           if (heat && wall_conducts(w))
             p.heat_rate[i] +=
@@ -2399,17 +2004,17 @@ private:
       }
       if constexpr (predicts_velocity && Contact::has_torque)
         set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
-      const std::size_t miw = p.material[i] * materials_.size() + walls_[w].options.material;
-      const auto& pair = var_pairs_ ? wall_pair_cache_[e] : pairs_[miw];
-      const auto& cp = pair_resolved_[miw];
-      History& h = hist(wall_history_, e);
+      const std::size_t miw = table_.index(p.material[i], walls_[w].options.material);
+      const auto& pair = vprops_.per_particle ? wall_pair_cache_[e] : table_.properties(miw);
+      const auto& cp = table_.resolved(miw);
+      History& h = hist(hist_.wall, e);
       auto r = Contact::evaluate(g, pair, cp, h, dt_);
       p.force[i] += r.force;
       if constexpr (Contact::has_torque) {
         p.torque[i] += r.torque_i;
-        wall_loads_[e] = {r.force, g.point, A(r.torque_i - cross(g.arm_i, r.force))};
+        wall_loads_.entries[e] = {r.force, g.point, A(r.torque_i - cross(g.arm_i, r.force))};
       } else {
-        wall_loads_[e] = {r.force, g.point, zero<A>()};
+        wall_loads_.entries[e] = {r.force, g.point, zero<A>()};
       }
       if (tracking_) {
         double work = r.force.dot(vf[i] - walls_[w].velocity_at(g.point));
@@ -2445,14 +2050,14 @@ private:
       for (long ii = end - 1; ii >= begin; --ii) {
         request_ahead(ii, ahead, begin, cold, end);
         const auto i = static_cast<std::size_t>(ii);
-        for (auto e = list_.offsets[i]; e < list_.offsets[i + 1]; ++e) {
+        for (const auto e : list_.pair_entries(i)) {
           const auto j = list_.partners[e];
           const double rs = p.radius[i] + p.radius[j];
           if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
             pair_contact(e, i, j); // the geometry is made there, once
             continue;
           }
-          if constexpr (!Contact::template stateless<D>) history_[e] = History{};
+          if constexpr (!Contact::template stateless<D>) hist_.pair[e] = History{};
           if (heat) {
             const double H = gap_pair_conductance(i, j, e, g);
             const double q = H * (p.temperature[j] - p.temperature[i]);
@@ -2493,10 +2098,10 @@ private:
           nhit += t;
           if constexpr (!Contact::template stateless<D>) {
             // no branch on the distance test: clearing a stale history is rare
-            const std::uint64_t stale = detail::byte_difference(history_[e], blank_history_) &
+            const std::uint64_t stale = detail::byte_difference(hist_.pair[e], blank_history_) &
                                         (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
             if (stale != 0) [[unlikely]]
-              history_[e] = blank_history_;
+              hist_.pair[e] = blank_history_;
           }
         }
       };
@@ -2899,99 +2504,25 @@ private:
   }
 
   // ---------------------------------------------------------------- lifecycle
-  bool lifecycle_due() const {
-    return !pending_.empty() || !doomed_.empty() || bounding_box_ || !sinks_.empty();
-  }
+  bool lifecycle_due() const { return life_.active(); }
   /// Removes the particles that left the bounding box, entered a sink or reached their
-  /// destruction time, and activates those whose creation time has come.
+  /// destruction time, and activates those whose creation time has come (Lifecycle::decide).
   void lifecycle() {
     auto& p = particles_;
-    const std::size_t n = p.size();
     const double t = time_;
-    const bool box = bounding_box_ && bounding_box_->active(t);
-    bool sink = false;
-    for (const auto& k : sinks_) sink = sink || k.active(t);
-    // nothing to do in most steps: no active region, nobody due
-    bool due = box || sink;
-    for (std::size_t k = 0; !due && k < doomed_.size(); ++k) due = doomed_[k].first <= t;
-    for (std::size_t k = 0; !due && k < pending_.size(); ++k) due = pending_[k].creation_time <= t;
-    if (!due) return;
+    auto d = life_.decide(t, p.position, p.id, [&] { require_finite_state(); });
+    if (!d.changed) return;
     collect_wall_loads(); // before the particles are renumbered
-    std::vector<char> gone(n, 0);
-    bool any = false;
-    if (box || sink) {
-      for (std::size_t i = 0; i < n; ++i) {
-        bool out = box && !bounding_box_->contains(p.position[i]);
-        if (out && !p.position[i].allFinite()) require_finite_state(); // not a particle that left
-        for (const auto& k : sinks_)
-          if (!out && k.active(t) && k.contains(p.position[i])) out = true;
-        if (out) gone[i] = 1;
-        any = any || out;
-      }
-    }
-    if (!doomed_.empty()) {
-      std::vector<std::int64_t> due;
-      std::erase_if(doomed_, [&](const std::pair<double, std::int64_t>& d) {
-        if (d.first > t) return false;
-        due.push_back(d.second);
-        return true;
-      });
-      if (!due.empty()) {
-        std::sort(due.begin(), due.end());
-        for (std::size_t i = 0; i < n; ++i)
-          if (std::binary_search(due.begin(), due.end(), p.id[i])) {
-            gone[i] = 1;
-            any = true;
-          }
-        // inactive particles whose life ends before they start never appear; their ids count
-        // as removed (not to be given again), as for remove_particle on a waiting particle
-        std::erase_if(pending_, [&](const ParticleSpec<D>& s) {
-          if (!std::binary_search(due.begin(), due.end(), s.id)) return false;
-          removed_ids_.push_back(s.id);
-          return true;
-        });
-      }
-    }
-    std::vector<std::uint32_t> kept;
-    if (any) {
-      kept.reserve(n);
-      std::vector<std::int64_t> now_removed;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (gone[i])
-          now_removed.push_back(p.id[i]);
-        else
-          kept.push_back(static_cast<std::uint32_t>(i));
-      }
-      removed_ids_.insert(removed_ids_.end(), now_removed.begin(), now_removed.end());
-      std::sort(now_removed.begin(), now_removed.end());
-      std::erase_if(doomed_, [&](const std::pair<double, std::int64_t>& d) {
-        return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
-      });
-      keep_particles(kept);
-    }
-    bool born = false;
+    if (d.removed) keep_particles(d.kept);
     std::vector<std::int64_t> born_ids;
-    if (!pending_.empty()) {
-      if (!any) {
-        kept.resize(n);
-        for (std::size_t i = 0; i < n; ++i) kept[i] = static_cast<std::uint32_t>(i);
-      }
-      std::vector<ParticleSpec<D>> still;
-      for (const auto& s : pending_) {
-        if (s.creation_time <= t) {
-          append_particle(s);
-          p.force.back() = p.mass.back() * gravity(); // its first half kick feels its weight
-          kept.push_back(none);
-          born_ids.push_back(p.id.back());
-          born = true;
-        } else {
-          still.push_back(s);
-        }
-      }
-      pending_.swap(still);
+    for (const auto& s : d.born) {
+      append_particle(s);
+      p.force.back() = p.mass.back() * gravity(); // its first half kick feels its weight
+      d.kept.push_back(none);
+      born_ids.push_back(p.id.back());
     }
-    if (!any && !born) return;
-    origin_ = std::move(kept);
+    const bool born = !d.born.empty();
+    origin_ = std::move(d.kept);
     groups_dirty_ = true;
     rebuild();
     ensure_groups();
@@ -3017,66 +2548,45 @@ private:
   // ---------------------------------------------------------------- stages and fields
   using StageTuple = typename detail::stage_tuple<StageList>::type;
   using FieldStore = detail::field_tuple<FieldList>;
-  enum class Hook { initialize, begin_step, before_search, after_forces, end_of_step };
-
+  using Hook = detail::Hook;
   template <class S>
   static constexpr bool has_stage() {
-    return []<class... Ss>(stages<Ss...>) { return (std::is_same_v<S, Ss> || ...); }(StageList{});
+    return detail::has_stage_in<S, StageList>;
   }
+  /// True without user stages (the last half kick of a step may then join the next step's).
+  static constexpr bool no_stages = detail::no_stages_in<StageList>;
   /// True if a stage moves particles or walls between the drift and the search: the fused
   /// velocity-Verlet pass (which measures displacements and predicts velocities before it) is
   /// then not used.
-  static constexpr bool no_stages = []<class... Ss>(stages<Ss...>) {
-    return sizeof...(Ss) == 0;
-  }(StageList{});
-  static constexpr bool stages_move = []<class... Ss>(stages<Ss...>) {
-    return (detail::moves_in_stage<Ss, Simulation> || ...);
-  }(StageList{});
-
+  static constexpr bool stages_move = detail::stages_move_in<StageList, Simulation>;
   /// Calls hook H of every stage that has it, in list order.
   template <Hook H>
   void call_stages() {
-    static_assert(
-        []<class... Ss>(stages<Ss...>) {
-          return (detail::stage_for<Ss, Simulation> && ...);
-        }(StageList{}),
-        "grain::stages<...>: each stage needs at least one hook taking the simulation "
-        "by reference: initialize(sim), begin_step(sim), before_search(sim), "
-        "after_forces(sim) or end_of_step(sim)");
-    std::apply([this](auto&... s) { (call_stage<H>(s), ...); }, stages_);
-  }
-  template <Hook H, class S>
-  void call_stage(S& s) {
-    if constexpr (H == Hook::initialize) {
-      if constexpr (requires { s.initialize(*this); }) s.initialize(*this);
-    } else if constexpr (H == Hook::begin_step) {
-      if constexpr (requires { s.begin_step(*this); }) s.begin_step(*this);
-    } else if constexpr (H == Hook::before_search) {
-      if constexpr (requires { s.before_search(*this); }) s.before_search(*this);
-    } else if constexpr (H == Hook::after_forces) {
-      if constexpr (requires { s.after_forces(*this); }) s.after_forces(*this);
-    } else {
-      if constexpr (requires { s.end_of_step(*this); }) s.end_of_step(*this);
-    }
-  }
-  template <class S, class Archive>
-  static void serialize_stage(S& s, Archive& ar) {
-    if constexpr (requires { s.serialize(ar); }) s.serialize(ar);
+    detail::call_stages<H>(stages_, *this);
   }
   /// Applies a particle permutation (or removal: a shorter perm) to the fields.
   void permute_fields(const std::vector<std::uint32_t>& perm) {
     std::apply([&](auto&... f) { (permute_values(f, perm), ...); }, fields_);
   }
-  /// Removes the pairs of two members of the same clump from the list (rigid: they never act on
-  /// each other). The largest index span is kept (an upper bound is all the chunking needs).
-  void drop_clump_internal_pairs() {
-    const auto& f = std::get<std::vector<ClumpMember>>(fields_);
+  /// True if a field excludes pairs from the list (field_traits<F>::excluded).
+  static constexpr bool excluding_fields = []<class... F>(fields<F...>) {
+    return (detail::excluding_field<F> || ... || false);
+  }(FieldList{});
+  /// Removes the pairs that a field excludes (two members of the same clump: rigid, they never
+  /// act on each other) from the list. The largest index span is kept (an upper bound is all the
+  /// chunking needs).
+  void drop_excluded_pairs() {
+    auto excluded = [&](std::size_t i, std::size_t j) {
+      return std::apply(
+          [&](const auto&... f) { return (detail::field_excludes(f[i], f[j]) || ... || false); },
+          fields_);
+    };
     std::uint32_t out = 0, begin = list_.offsets[0];
     for (std::size_t i = 0; i + 1 < list_.offsets.size(); ++i) {
       const std::uint32_t end = list_.offsets[i + 1];
       for (std::uint32_t e = begin; e < end; ++e) {
         const auto j = list_.partners[e];
-        if (f[i].clump >= 0 && f[i].clump == f[j].clump) continue;
+        if (excluded(i, j)) continue;
         list_.partners[out++] = j;
       }
       begin = end;
@@ -3092,63 +2602,19 @@ private:
 
   StageTuple stages_{};
   typename FieldStore::type fields_{};
-  /// What a particle-wall list entry exchanged at the last force evaluation: the force on the
-  /// particle [N], the contact point [m] and the couple on the particle beyond that of the force
-  /// at the point (rolling resistance) [N m]; zero when not touching.
-  struct WallLoad {
-    V force = V::Zero();
-    V point = V::Zero();
-    A couple = zero<A>();
-  };
-  std::vector<WallLoad> wall_loads_;
-  /// The loads of the last force evaluation per wall, and its touching wall contacts.
-  struct WallContact {
-    std::int64_t id;
-    std::uint32_t wall;
-    V point, force; ///< contact point [m], force on the wall [N]
-  };
-  mutable std::vector<V> wall_force_sum_;
-  mutable std::vector<A> wall_torque_sum_;
-  mutable std::vector<WallContact> wall_contacts_;
-  /// True from a force evaluation until its wall loads are summed: they are summed when asked
-  /// for, or before a neighbour-list rebuild replaces the list entries (a run that never asks
-  /// pays only at rebuilds).
-  mutable bool wall_loads_pending_ = false;
-  /// Sums the wall loads of the list entries per wall (serially, in list order).
-  void collect_wall_loads() const {
-    if (!wall_loads_pending_) return;
-    wall_loads_pending_ = false;
-    wall_force_sum_.assign(walls_.size(), V::Zero());
-    wall_torque_sum_.assign(walls_.size(), zero<A>());
-    wall_contacts_.clear();
-    const auto& p = particles_;
-    for (std::size_t i = 0; i + 1 < list_.wall_offsets.size(); ++i)
-      for (auto e = list_.wall_offsets[i]; e < list_.wall_offsets[i + 1]; ++e) {
-        const auto& l = wall_loads_[e];
-        if (l.force == V::Zero() && l.couple == zero<A>()) continue;
-        const auto w = list_.walls[e];
-        wall_force_sum_[w] -= l.force;
-        wall_torque_sum_[w] -= cross(V(l.point - walls_[w].pivot), l.force) + l.couple;
-        wall_contacts_.push_back({p.id[i], w, l.point, V(-l.force)});
-      }
-  }
+  /// What the particles exerted on the walls at the last force evaluation (summed lazily).
+  WallLoads<D> wall_loads_;
+  void collect_wall_loads() const { wall_loads_.collect(list_, particles_.id, walls_); }
 
   Params params_;
   Shape shape_;
-  std::vector<Material> materials_;
-  std::vector<PairOverride> overrides_;
-  std::vector<PairProperties> pairs_;
-  /// Contact-model parameters per pair of materials (nm x nm; SimulationParams::contact unless
-  /// set_pair_parameters gave a pair its own).
-  std::vector<typename Contact::Params> pair_params_;
-  /// What the force loop uses: pair_params_ resolved with pairs_ (Contact::resolve) while the
-  /// contact properties are those of the materials, pair_params_ itself once a variable
-  /// property changes them per particle.
-  std::vector<typename Contact::Params> pair_resolved_;
+  /// The materials, and the properties and contact parameters of their pairs.
+  PairTable<Contact> table_{params_.contact, params_.fluid.conductivity};
   Particles particles_;
   std::vector<Wall<D>> walls_;
   NeighborList list_;
-  std::vector<History> history_, wall_history_;
+  using Histories = ContactHistories<History>;
+  Histories hist_; ///< the contact histories of the list entries
   bool kick_pending_ = false; ///< the last step's second half kick is left to the next step
   bool heat_pending_ = false; ///< the last step's temperature update is left to the next step
   History blank_history_{};   ///< a value-initialised history (what a pair without contact has)
@@ -3184,16 +2650,8 @@ private:
   bool initialized_ = false;
   // groups and conditions
   // variable properties
-  struct VariablePropertyOn {
-    VariableProperty vp;
-    std::size_t group;
-  };
-  std::vector<VariablePropertyOn> vprops_;
-  bool var_pairs_ = false; ///< some contact property varies: contact constants per list entry
-  /// Per-particle values of young, poisson, restitution, friction, rolling_friction,
-  /// conductivity (NaN = the material's), when var_pairs_.
-  std::array<std::vector<double>, 6> over_;
-  std::vector<PairProperties> pair_cache_, wall_pair_cache_; ///< per list entry, when var_pairs_
+  VariableProperties<D> vprops_; ///< properties that follow tables, per-particle values
+  std::vector<PairProperties> pair_cache_, wall_pair_cache_; ///< per list entry, when vprops_.per_particle
   // energy bookkeeping (SimulationParams::track_dissipation)
   bool tracking_ = false;          ///< accumulating in the current force evaluation
   std::vector<double> work_rows_;  ///< power delivered by the contacts of each row and damping [W]
@@ -3207,12 +2665,7 @@ private:
   std::optional<std::pair<TimeFunction, TimeFunction>> damping_fn_;
   std::optional<std::pair<VectorTimeFunction<D>, AngularTimeFunction<D>>> mass_damping_;
   // lifecycle
-  std::optional<TimedRegion<D>> bounding_box_;
-  std::vector<TimedRegion<D>> sinks_;
-  std::vector<ParticleSpec<D>> pending_;                 ///< inactive until their creation time
-  std::vector<std::pair<double, std::int64_t>> doomed_;  ///< (destruction time, id)
-  std::vector<std::int64_t> removed_ids_;
-  std::vector<std::int64_t> removal_requests_; ///< ids removed before initialisation
+  Lifecycle<D> life_; ///< particles to come, destruction times, bounding box, sinks
   /// After removal / activation: the index in the neighbour list's arrays of the particle now at
   /// index k (`none` for a new one); empty = unchanged indices.
   std::vector<std::uint32_t> origin_;

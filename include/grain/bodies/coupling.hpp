@@ -75,6 +75,18 @@ namespace grain::bodies {
 struct BodyLink {
   std::int32_t body = -1;
 };
+} // namespace grain::bodies
+
+namespace grain {
+/// A particle of a rigid body has an inverse mass of 0 but moves under its contact forces: it is
+/// not a fixed particle.
+template <>
+struct field_traits<bodies::BodyLink> {
+  static bool driven(const bodies::BodyLink& f) { return f.body >= 0; }
+};
+} // namespace grain
+
+namespace grain::bodies {
 
 /// What a converted particle keeps or gets instead (Parmec's ANALYTICAL parameters); an empty
 /// member keeps the particle's value.

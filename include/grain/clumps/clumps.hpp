@@ -43,6 +43,23 @@
 
 namespace grain {
 
+/// Per-particle field of rigid aggregates (the clump stage): the clump and member index of a
+/// particle, -1 for a single particle.
+struct ClumpMember {
+  std::int32_t clump = -1;
+  std::int32_t member = -1;
+};
+/// Clump members have an inverse mass of 0 but move with their clump under their contact
+/// forces; two members of the same clump never act on each other, so their pair is never in the
+/// neighbour list.
+template <>
+struct field_traits<ClumpMember> {
+  static bool driven(const ClumpMember& f) { return f.clump >= 0; }
+  static bool excluded(const ClumpMember& a, const ClumpMember& b) {
+    return a.clump >= 0 && a.clump == b.clump;
+  }
+};
+
 /// The shape of a clump in its reference frame: member centres (relative to the centroid) and
 /// radii, and the moments of their union per unit density. Make it once with `clump_shape` and
 /// place it as many times as needed.

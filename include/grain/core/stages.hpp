@@ -32,6 +32,7 @@
 /// it does not name. The thermal state (temperature, heat rate, heat capacity) is the built-in
 /// example: it exists only when the contact conducts heat.
 
+#include <concepts>
 #include <cstdint>
 #include <tuple>
 #include <type_traits>
@@ -47,15 +48,44 @@ struct stages {};
 template <class... F>
 struct fields {};
 
-/// Per-particle field of rigid aggregates (the clump stage, clumps/clumps.hpp): the clump and
-/// member index of a particle, -1 for a single particle. A simulation that has this field never
-/// puts two members of the same clump into its neighbour list: they do not touch each other.
-struct ClumpMember {
-  std::int32_t clump = -1;
-  std::int32_t member = -1;
-};
+/// How the simulation's core treats a particle by the value of one of its fields: the way an
+/// extension above the core (clumps, a rigid-body system) tells it what the core must know,
+/// without the core naming the extension. Specialise it for a field type F with either or both
+/// of these static members (a field without a specialisation changes nothing):
+/// - `static bool driven(const F& f)`: true if a particle whose inverse mass is 0 is moved by
+///   its contact forces through the extension (a clump member, a particle of a rigid body), so
+///   it is not a fixed particle: its contacts use its own mass, not an infinite one;
+/// - `static bool excluded(const F& a, const F& b)`: true if two particles never act on each
+///   other (members of one rigid aggregate): their pair is left out of the neighbour list.
+template <class F>
+struct field_traits {};
 
 namespace detail {
+
+template <class F>
+concept driving_field = requires(const F& f) {
+  { field_traits<F>::driven(f) } -> std::convertible_to<bool>;
+};
+template <class F>
+concept excluding_field = requires(const F& a) {
+  { field_traits<F>::excluded(a, a) } -> std::convertible_to<bool>;
+};
+/// field_traits<F>::driven(f), or false if F does not say.
+template <class F>
+bool field_driven(const F& f) {
+  if constexpr (driving_field<F>)
+    return field_traits<F>::driven(f);
+  else
+    return ((void)f, false);
+}
+/// field_traits<F>::excluded(a, b), or false if F does not say.
+template <class F>
+bool field_excludes(const F& a, const F& b) {
+  if constexpr (excluding_field<F>)
+    return field_traits<F>::excluded(a, b);
+  else
+    return ((void)a, (void)b, false);
+}
 
 template <class T>
 struct is_stages : std::false_type {};

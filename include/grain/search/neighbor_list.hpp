@@ -8,6 +8,24 @@
 
 namespace grain {
 
+/// The entries [first, last) of one row of a NeighborList, as a range of entry indices:
+/// `for (const auto e : list.pair_entries(i)) ... list.partners[e] ...`.
+struct EntryRange {
+  struct iterator {
+    std::uint32_t e;
+    std::uint32_t operator*() const { return e; }
+    iterator& operator++() {
+      ++e;
+      return *this;
+    }
+    bool operator==(const iterator&) const = default;
+  };
+  std::uint32_t first, last;
+  iterator begin() const { return {first}; }
+  iterator end() const { return {last}; }
+  std::uint32_t size() const { return last - first; }
+};
+
 struct NeighborList {
   std::vector<std::uint32_t> offsets{0};      ///< row i is partners[offsets[i], offsets[i+1])
   std::vector<std::uint32_t> partners;        ///< j > i
@@ -16,6 +34,10 @@ struct NeighborList {
   std::uint32_t max_span = 0;                 ///< largest j - i in the list
 
   std::size_t rows() const { return offsets.size() - 1; }
+  /// The particle-pair entries of row i (indices into `partners`).
+  EntryRange pair_entries(std::size_t i) const { return {offsets[i], offsets[i + 1]}; }
+  /// The particle-wall entries of row i (indices into `walls`).
+  EntryRange wall_entries(std::size_t i) const { return {wall_offsets[i], wall_offsets[i + 1]}; }
   void clear(std::size_t n) {
     offsets.assign(1, 0);
     offsets.reserve(n + 1);

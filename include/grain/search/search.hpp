@@ -10,25 +10,63 @@
 /// | `AllPairs` | test all pairs, O(N^2) | every step, no skin (the seed's "simple loop") |
 /// | `VerletList` | test all pairs, O(N^2), keep those within the skin | every `frequency` steps, or earlier when the displacement demands it (the seed's "restricted loop") |
 /// | `CellList` | linked cells of size >= 2 R_max + cutoff + skin, particles re-sorted by cell, O(N) | when the displacement demands it |
+///
+/// A search is a type with static members only (concept `Search`, docs/concepts.md): its
+/// settings `Params`, `validate`, the skin, when a rebuild is due, and `build`, which fills the
+/// list; optionally `order`, a permutation of the particles applied before each build (memory
+/// locality). A program may define its own and give it to `Simulation` as its 2nd argument.
 
+#include <grain/core/error.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/neighbor_list.hpp>
 #include <grain/walls/walls.hpp>
 #include <algorithm>
 #include <cmath>
+#include <concepts>
+#include <cstdint>
 #include <limits>
 #include <numeric>
+#include <string>
+#include <vector>
 
 namespace grain::search {
+
+/// Appends the wall row of particle i to `list` (after its particle row): every wall whose
+/// nearest point is closer to the centre than radius + reach. A search's `build` calls it once
+/// per particle, in particle order.
+template <int D>
+void add_wall_row(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                  NeighborList& list, std::size_t i) {
+  for (std::uint32_t w = 0; w < walls.size(); ++w) {
+    const auto prox = walls[w].nearest(p.position[i]); // a mesh triangle's own nearest point
+    if (prox.distance < p.radius[i] + reach) list.walls.push_back(w);
+  }
+  list.wall_offsets.push_back(static_cast<std::uint32_t>(list.walls.size()));
+}
+
+namespace detail {
+template <int D>
+void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                     NeighborList& list);
+template <int D>
+void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                 double r_max, NeighborList& list);
+template <int D>
+std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size);
+} // namespace detail
 
 /// Every pair tested at every step (reference search; O(N^2)).
 struct AllPairs {
   static constexpr const char* name = "all pairs";
   struct Params {};
   static void validate(const Params&) {}
-  static constexpr bool sorts = false;
   static double skin(const Params&, double) { return 0.0; }
   static bool due(const Params&, long, bool) { return true; }
+  template <int D>
+  static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
+                    double reach, double, NeighborList& list) {
+    detail::build_all_pairs(p, walls, reach, list);
+  }
 };
 
 /// Per-particle lists of partners within a skin (verlet distance), rebuilt at a set frequency
@@ -40,14 +78,18 @@ struct VerletList {
     int frequency = 0; ///< rebuild every n steps; 0 = only when the displacement demands it
   };
   static void validate(const Params& p) {
-    detail::require_non_negative("search::VerletList", "skin", p.skin);
-    detail::require(p.frequency >= 0, "search::VerletList", "frequency", p.frequency,
+    grain::detail::require_non_negative("search::VerletList", "skin", p.skin);
+    grain::detail::require(p.frequency >= 0, "search::VerletList", "frequency", p.frequency,
                     "[0, inf) steps (0 = automatic)");
   }
-  static constexpr bool sorts = false;
   static double skin(const Params& p, double r_max) { return p.skin > 0 ? p.skin : 0.5 * r_max; }
   static bool due(const Params& p, long steps_since, bool moved_too_far) {
     return moved_too_far || (p.frequency > 0 && steps_since >= p.frequency);
+  }
+  template <int D>
+  static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
+                    double reach, double, NeighborList& list) {
+    detail::build_all_pairs(p, walls, reach, list);
   }
 };
 
@@ -59,19 +101,89 @@ struct CellList {
     bool sort = true;  ///< re-sort particles by cell at rebuilds (memory locality)
   };
   static void validate(const Params& p) {
-    detail::require_non_negative("search::CellList", "skin", p.skin);
+    grain::detail::require_non_negative("search::CellList", "skin", p.skin);
   }
-  static constexpr bool sorts = true;
   static double skin(const Params& p, double r_max) { return p.skin > 0 ? p.skin : 0.2 * r_max; }
   static bool due(const Params&, long, bool moved_too_far) { return moved_too_far; }
+  /// The particles sorted by cell (cells of 2 R_max + reach), unless `sort` is off.
+  template <int D>
+  static std::vector<std::uint32_t> order(const Params& prm, const ParticleArrays<D>& p,
+                                          double reach, double r_max) {
+    if (!prm.sort || p.size() < 2) return {};
+    return detail::cell_order(p, 2.0 * r_max + reach);
+  }
+  template <int D>
+  static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
+                    double reach, double r_max, NeighborList& list) {
+    detail::build_cells(p, walls, reach, r_max, list);
+  }
 };
 
-/// A neighbour search type.
-template <class S>
-concept Search = requires {
-  typename S::Params;
-  { S::sorts } -> std::convertible_to<bool>;
+/// A neighbour search for particles of dimension D (docs/concepts.md). With `prm` its Params,
+/// `p` the particles, `walls` the walls, `reach` [m] the distance beyond contact within which
+/// pairs must be listed (skin plus the largest conduction cut-off), `r_max` [m] the largest
+/// radius present or to come:
+/// - `S::validate(prm)` throws InputError for bad settings;
+/// - `S::skin(prm, r_max)` is the skin [m] (0: the list is rebuilt every step);
+/// - `S::due(prm, steps_since_rebuild, moved_too_far)` is true when the list must be rebuilt
+///   (`moved_too_far`: the displacement since the last build reached the skin; a search must
+///   then return true, or contacts are found late);
+/// - `S::build(prm, p, walls, reach, r_max, list)` fills `list` (NeighborList: clear it first)
+///   with every pair i < j whose gap is below `reach`, row i holding its partners j in ascending
+///   order, then with add_wall_row(p, walls, reach, list, i) for each particle i in order, and
+///   sets `list.max_span` to the largest j - i;
+/// - optionally `S::order(prm, p, reach, r_max)` returns a permutation (new index k holds the
+///   particle at old index perm[k]; empty = keep the order) that the simulation applies to every
+///   particle array before `build`.
+template <class S, int D = 3>
+concept Search = requires(const typename S::Params& prm, const ParticleArrays<D>& p,
+                          const std::vector<Wall<D>>& walls, NeighborList& list) {
+  S::validate(prm);
+  { S::skin(prm, 1.0) } -> std::convertible_to<double>;
+  { S::due(prm, 1L, true) } -> std::convertible_to<bool>;
+  S::build(prm, p, walls, 1.0, 1.0, list);
 };
+
+/// True if the search S re-orders the particles before it builds (`S::order`).
+template <class S, int D>
+concept Reorders = requires(const typename S::Params& prm, const ParticleArrays<D>& p) {
+  { S::order(prm, p, 1.0, 1.0) } -> std::convertible_to<std::vector<std::uint32_t>>;
+};
+
+/// One of grain's own searches (their lists are known to be well formed).
+template <class S>
+inline constexpr bool builtin = std::same_as<S, AllPairs> || std::same_as<S, VerletList> ||
+                                std::same_as<S, CellList>;
+
+/// Throws InputError naming the search unless `list` is a well-formed list of n particles: n
+/// rows, partners j > i ascending within each row, wall rows for every particle, `max_span` at
+/// least the largest j - i. Checked after each build of a search that is not one of grain's.
+inline void require_valid_list(const NeighborList& list, std::size_t n, const char* search) {
+  auto fail = [&](const std::string& what) {
+    throw InputError(std::string("search '") + search + "': the neighbour list it built " + what +
+                     "; valid: the list of docs/concepts.md (rows of partners j > i, ascending, "
+                     "and a wall row per particle)");
+  };
+  if (list.offsets.size() != n + 1 || list.wall_offsets.size() != n + 1)
+    fail("has " + std::to_string(list.offsets.size() - 1) + " rows for " + std::to_string(n) +
+         " particles");
+  if (list.offsets[0] != 0 || list.offsets[n] != list.partners.size() ||
+      list.wall_offsets[0] != 0 || list.wall_offsets[n] != list.walls.size())
+    fail("has offsets that do not cover its entries");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (list.offsets[i + 1] < list.offsets[i] || list.wall_offsets[i + 1] < list.wall_offsets[i])
+      fail("has decreasing offsets at row " + std::to_string(i));
+    std::uint32_t prev = static_cast<std::uint32_t>(i);
+    for (const auto e : list.pair_entries(i)) {
+      const auto j = list.partners[e];
+      if (j <= prev || j >= n)
+        fail("has partner " + std::to_string(j) + " in row " + std::to_string(i) +
+             " (not above the row and the previous partner, or not a particle)");
+      if (j - i > list.max_span) fail("has a max_span below a pair's index distance");
+      prev = j;
+    }
+  }
+}
 
 namespace detail {
 
@@ -139,17 +251,6 @@ struct Grid {
   }
 };
 
-/// Adds the candidate walls of every particle to the list.
-template <int D>
-void build_wall_rows(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
-                     NeighborList& list, std::size_t i) {
-  for (std::uint32_t w = 0; w < walls.size(); ++w) {
-    const auto prox = walls[w].nearest(p.position[i]); // a mesh triangle's own nearest point
-    if (prox.distance < p.radius[i] + reach) list.walls.push_back(w);
-  }
-  list.wall_offsets.push_back(static_cast<std::uint32_t>(list.walls.size()));
-}
-
 /// O(N^2) build: partners j > i closer than r_i + r_j + reach.
 template <int D>
 void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
@@ -165,7 +266,7 @@ void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& wal
       }
     }
     list.offsets.push_back(static_cast<std::uint32_t>(list.partners.size()));
-    build_wall_rows(p, walls, reach, list, i);
+    add_wall_row(p, walls, reach, list, i);
   }
 }
 
@@ -241,7 +342,7 @@ void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, 
       list.max_span = std::max<std::uint32_t>(list.max_span, static_cast<std::uint32_t>(j - i));
     }
     list.offsets.push_back(static_cast<std::uint32_t>(list.partners.size()));
-    build_wall_rows(p, walls, reach, list, i);
+    add_wall_row(p, walls, reach, list, i);
   }
 }
 

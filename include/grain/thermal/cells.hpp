@@ -203,7 +203,7 @@ inline FullRows full_rows(const NeighborList& nl, std::size_t n) {
   FullRows r;
   r.offsets.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+    for (const auto k : nl.pair_entries(i)) {
       ++r.offsets[i + 1];
       ++r.offsets[nl.partners[k] + 1];
     }
@@ -212,7 +212,7 @@ inline FullRows full_rows(const NeighborList& nl, std::size_t n) {
   r.items.resize(r.offsets[n]);
   std::vector<std::uint32_t> fill(r.offsets.begin(), r.offsets.end() - 1);
   for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+    for (const auto k : nl.pair_entries(i)) {
       const std::uint32_t j = nl.partners[k];
       r.items[fill[i]++] = j;
       r.items[fill[j]++] = static_cast<std::uint32_t>(i);
@@ -442,11 +442,11 @@ inline CellRadii porosity_radii(std::span<const double> radius, std::span<const 
   r.pair.resize(nl.partners.size());
   r.wall.resize(nl.walls.size());
   for (std::size_t i = 0; i < radius.size(); ++i) {
-    for (std::uint32_t k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+    for (const auto k : nl.pair_entries(i)) {
       const std::uint32_t j = nl.partners[k];
       r.pair[k] = cell_radius_from_porosity(0.5 * (radius[i] + radius[j]), 0.5 * (phi[i] + phi[j]));
     }
-    for (std::uint32_t k = nl.wall_offsets[i]; k < nl.wall_offsets[i + 1]; ++k)
+    for (const auto k : nl.wall_entries(i))
       r.wall[k] = cell_radius_from_porosity(radius[i], phi[i]);
   }
   return r;
@@ -489,7 +489,7 @@ NeighborList pairs_within(std::span<const Vec<D>> x, std::span<const double> r,
   NeighborList out;
   out.clear(x.size());
   for (std::size_t i = 0; i + 1 < nl.offsets.size(); ++i) {
-    for (auto e = nl.offsets[i]; e < nl.offsets[i + 1]; ++e) {
+    for (const auto e : nl.pair_entries(i)) {
       const auto j = nl.partners[e];
       const double rs = r[i] + r[j] + reach;
       if ((x[j] - x[i]).squaredNorm() < rs * rs) out.partners.push_back(j);

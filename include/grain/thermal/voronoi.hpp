@@ -424,7 +424,7 @@ CellRadii voronoi_radii(std::span<const Vec<D>> x, std::span<const double> radiu
     std::vector<Vec<D>> c;
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
-      for (std::uint32_t k = nl.offsets[i]; k < nl.offsets[i + 1]; ++k) {
+      for (const auto k : nl.pair_entries(i)) {
         const std::uint32_t j = nl.partners[k];
         if (j == i) continue;
         const auto [lo, hi] = range(static_cast<std::uint32_t>(i), j);
@@ -467,7 +467,7 @@ CellRadii voronoi_radii(std::span<const Vec<D>> x, std::span<const double> radiu
 #pragma omp for schedule(dynamic, 256)
     for (std::size_t i = 0; i < n; ++i) {
       if (!in_diagram[i]) continue;
-      for (std::uint32_t k = nl.wall_offsets[i]; k < nl.wall_offsets[i + 1]; ++k) {
+      for (const auto k : nl.wall_entries(i)) {
         const Vec<D> nrm = walls[k].normal.normalized();
         const Vec<D> foot = x[i] - (x[i] - walls[k].point).dot(nrm) * nrm;
         const Vec<D> flo = foot.array() - margin, fhi = foot.array() + margin;
@@ -702,7 +702,7 @@ struct VoronoiDiagram {
                            const NeighborList& nl, const Walls& walls, double) {
     std::vector<WallPlane<D>> planes(nl.walls.size());
     for (std::size_t i = 0; i + 1 < nl.wall_offsets.size(); ++i)
-      for (auto e = nl.wall_offsets[i]; e < nl.wall_offsets[i + 1]; ++e) {
+      for (const auto e : nl.wall_entries(i)) {
         const auto prox = walls[nl.walls[e]].nearest(x[i]);
         planes[e].normal = -prox.normal;
         planes[e].point = x[i] + prox.distance * prox.normal;

@@ -1,0 +1,149 @@
+#pragma once
+/// \file lifecycle.hpp
+/// `Lifecycle<D>`: which particles exist. It holds the particles still to come (a creation time
+/// in the future), the destruction times, the bounding box and the sinks, and the ids removed so
+/// far; `decide` says, at a time t, which particles go and which arrive. The simulation applies
+/// the decision (renumbering its arrays, rebuilding its list).
+
+#include <grain/conditions/regions.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/simulation/params.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace grain {
+
+template <int D>
+struct Lifecycle {
+  using V = Vec<D>;
+
+  std::optional<TimedRegion<D>> bounding_box; ///< particles outside it are removed
+  std::vector<TimedRegion<D>> sinks;          ///< particles inside one are removed
+  std::vector<ParticleSpec<D>> pending;       ///< inactive until their creation time
+  std::vector<std::pair<double, std::int64_t>> doomed; ///< (destruction time, id)
+  std::vector<std::int64_t> removed_ids; ///< ids removed so far, in order (never given again)
+  std::vector<std::int64_t> removal_requests; ///< ids removed between runs, not yet carried out
+
+  /// True if anything may change in a step (else `decide` is never needed).
+  bool active() const {
+    return !pending.empty() || !doomed.empty() || bounding_box || !sinks.empty();
+  }
+  /// True if `id` waits for its creation time.
+  bool is_pending(std::int64_t id) const {
+    return std::any_of(pending.begin(), pending.end(),
+                       [&](const ParticleSpec<D>& s) { return s.id == id; });
+  }
+  /// True if `id` was removed, or is to be removed, and may not be given again.
+  bool was_removed(std::int64_t id) const {
+    return std::find(removed_ids.begin(), removed_ids.end(), id) != removed_ids.end();
+  }
+  bool removal_requested(std::int64_t id) const {
+    return std::find(removal_requests.begin(), removal_requests.end(), id) !=
+           removal_requests.end();
+  }
+  /// Forgets the destruction time of `id` and counts it as removed.
+  void forget(std::int64_t id) {
+    std::erase_if(doomed, [&](const auto& d) { return d.second == id; });
+    removed_ids.push_back(id);
+  }
+
+  /// What `decide` found: `changed` is false if nothing happens; otherwise the particles keep
+  /// their arrays' entries `kept` (ascending old indices; all of them if `removed` is false) and
+  /// the particles `born` are appended after them, in this order.
+  struct Decision {
+    bool changed = false;
+    bool removed = false;
+    std::vector<std::uint32_t> kept;
+    std::vector<ParticleSpec<D>> born;
+  };
+
+  /// The decision at time t for the particles at `x` with ids `id`: those outside the bounding
+  /// box or inside a sink (while active), or whose destruction time has come, go; those whose
+  /// creation time has come arrive. Updates the waiting list, the destruction times and the
+  /// removed ids. `check_finite()` is called for a particle outside the bounding box whose
+  /// position is not finite (it did not leave: the run has failed; it should throw).
+  template <class CheckFinite>
+  Decision decide(double t, const std::vector<V>& x, const std::vector<std::int64_t>& id,
+                  CheckFinite&& check_finite) {
+    Decision out;
+    const std::size_t n = x.size();
+    const bool box = bounding_box && bounding_box->active(t);
+    bool sink = false;
+    for (const auto& k : sinks) sink = sink || k.active(t);
+    // nothing to do in most steps: no active region, nobody due
+    bool due = box || sink;
+    for (std::size_t k = 0; !due && k < doomed.size(); ++k) due = doomed[k].first <= t;
+    for (std::size_t k = 0; !due && k < pending.size(); ++k) due = pending[k].creation_time <= t;
+    if (!due) return out;
+    std::vector<char> gone(n, 0);
+    bool any = false;
+    if (box || sink) {
+      for (std::size_t i = 0; i < n; ++i) {
+        bool leaves = box && !bounding_box->contains(x[i]);
+        if (leaves && !x[i].allFinite()) check_finite(); // not a particle that left
+        for (const auto& k : sinks)
+          if (!leaves && k.active(t) && k.contains(x[i])) leaves = true;
+        if (leaves) gone[i] = 1;
+        any = any || leaves;
+      }
+    }
+    if (!doomed.empty()) {
+      std::vector<std::int64_t> ending;
+      std::erase_if(doomed, [&](const std::pair<double, std::int64_t>& d) {
+        if (d.first > t) return false;
+        ending.push_back(d.second);
+        return true;
+      });
+      if (!ending.empty()) {
+        std::sort(ending.begin(), ending.end());
+        for (std::size_t i = 0; i < n; ++i)
+          if (std::binary_search(ending.begin(), ending.end(), id[i])) {
+            gone[i] = 1;
+            any = true;
+          }
+        // inactive particles whose life ends before they start never appear; their ids count
+        // as removed (not to be given again), as for remove_particle on a waiting particle
+        std::erase_if(pending, [&](const ParticleSpec<D>& s) {
+          if (!std::binary_search(ending.begin(), ending.end(), s.id)) return false;
+          removed_ids.push_back(s.id);
+          return true;
+        });
+      }
+    }
+    out.kept.reserve(n);
+    if (any) {
+      std::vector<std::int64_t> now_removed;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (gone[i])
+          now_removed.push_back(id[i]);
+        else
+          out.kept.push_back(static_cast<std::uint32_t>(i));
+      }
+      removed_ids.insert(removed_ids.end(), now_removed.begin(), now_removed.end());
+      std::sort(now_removed.begin(), now_removed.end());
+      std::erase_if(doomed, [&](const std::pair<double, std::int64_t>& d) {
+        return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
+      });
+    } else {
+      for (std::size_t i = 0; i < n; ++i) out.kept.push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<ParticleSpec<D>> still;
+    for (const auto& s : pending) {
+      if (s.creation_time <= t)
+        out.born.push_back(s);
+      else
+        still.push_back(s);
+    }
+    pending.swap(still);
+    out.removed = any;
+    out.changed = any || !out.born.empty();
+    return out;
+  }
+};
+
+} // namespace grain

@@ -1,0 +1,216 @@
+#pragma once
+/// \file variable_properties.hpp
+/// `VariableProperties<D>`: properties of the particles of groups that follow a table of
+/// temperature, time or speed (conditions/variable_property.hpp). `apply` updates the particles'
+/// radii, masses, inertias and heat capacities in place and keeps the per-particle values of
+/// the contact properties (Young's modulus, Poisson ratio, restitution, friction, rolling
+/// friction, conductivity; NaN = the material's); it reports what changed, and the simulation
+/// does what follows (a rebuild for a new radius, new per-contact constants for a contact
+/// property). `material_of` gives a particle's material with its values, `bounding_material`
+/// the extremes the tables reach (for the time step).
+
+#include <grain/conditions/variable_property.hpp>
+#include <grain/core/table.hpp>
+#include <grain/particles/material.hpp>
+#include <grain/particles/storage.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace grain {
+
+template <int D>
+struct VariableProperties {
+  /// A variable property and the index of its group.
+  struct On {
+    VariableProperty vp;
+    std::size_t group;
+  };
+  std::vector<On> list;
+  /// True once a contact property varies: the contact constants are then per list entry.
+  bool per_particle = false;
+  /// Per-particle values of young, poisson, restitution, friction, rolling_friction and
+  /// conductivity (NaN = the material's), while `per_particle`.
+  std::array<std::vector<double>, 6> values;
+
+  /// What an update changed.
+  struct Changes {
+    bool any = false;     ///< some property was due
+    bool radius = false;  ///< a radius changed (surfaces moved)
+    bool contact = false; ///< a contact property changed
+    bool thermal = false; ///< a heat capacity or conductance may have changed
+  };
+
+  bool empty() const { return list.empty(); }
+
+  /// Adds a property of group `group`; `n` particles exist. Returns true if this is the first
+  /// contact property (the contact constants become per particle).
+  bool add(VariableProperty vp, std::size_t group, std::size_t n) {
+    bool first = false;
+    if (is_contact_property(vp.property) && !per_particle) {
+      per_particle = true;
+      for (auto& o : values) o.assign(n, std::numeric_limits<double>::quiet_NaN());
+      first = true;
+    }
+    list.push_back({std::move(vp), group});
+    return first;
+  }
+  /// A new particle: no values of its own.
+  void append() {
+    if (per_particle)
+      for (auto& o : values) o.push_back(std::numeric_limits<double>::quiet_NaN());
+  }
+  /// The values follow a permutation (or a removal) of the particles.
+  void permute(const std::vector<std::uint32_t>& perm) {
+    if (per_particle)
+      for (auto& o : values) detail::permute_in_place(o, perm);
+  }
+
+  /// The material `base` of particle i with its per-particle values.
+  Material material_of(std::size_t i, const Material& base) const {
+    Material m = base;
+    if (!per_particle) return m;
+    auto take = [&](const std::vector<double>& o, double& v) {
+      if (!std::isnan(o[i])) v = o[i];
+    };
+    take(values[0], m.young);
+    take(values[1], m.poisson);
+    take(values[2], m.restitution);
+    take(values[3], m.friction);
+    take(values[4], m.rolling_friction);
+    take(values[5], m.conductivity);
+    if (!std::isnan(values[0][i]) || !std::isnan(values[1][i])) m.shear = 0.0; // G from E, nu
+    // a softened modulus keeps its ratio to the real one; a static friction below the new
+    // sliding friction is raised to it by the mixing rule
+    if (!std::isnan(values[0][i]) && base.young_real > 0.0)
+      m.young_real = base.young_real * (m.young / base.young);
+    return m;
+  }
+
+  /// The material `m` with the extremes its tables reach that bound the time step: the largest
+  /// Young's modulus and conductivity, the smallest density and heat capacity.
+  Material bounding_material(Material m) const {
+    for (const auto& v : list) {
+      const auto& y = v.vp.table->y();
+      if (v.vp.property == Property::young) {
+        m.young = std::max(m.young, *std::max_element(y.begin(), y.end()));
+        m.shear = 0.0;
+      } else if (v.vp.property == Property::density) {
+        m.density = std::min(m.density, *std::min_element(y.begin(), y.end()));
+      } else if (v.vp.property == Property::conductivity) {
+        m.conductivity = std::max(m.conductivity, *std::max_element(y.begin(), y.end()));
+      } else if (v.vp.property == Property::heat_capacity) {
+        m.heat_capacity = std::min(m.heat_capacity, *std::min_element(y.begin(), y.end()));
+      }
+    }
+    return m;
+  }
+  /// The smallest radius a radius table reaches (+inf without one), and whether a radius or a
+  /// density varies (the sizes of the time step are then bounded).
+  std::pair<double, bool> radius_bound() const {
+    double rb = std::numeric_limits<double>::infinity();
+    bool bounded = false;
+    for (const auto& v : list) {
+      if (v.vp.property == Property::radius)
+        for (double y : v.vp.table->y()) rb = std::min(rb, y);
+      bounded = bounded || v.vp.property == Property::radius || v.vp.property == Property::density;
+    }
+    return {rb, bounded};
+  }
+  /// The largest radius a radius table reaches (0 without one).
+  double largest_radius() const {
+    double r = 0.0;
+    for (const auto& v : list)
+      if (v.vp.property == Property::radius)
+        for (double y : v.vp.table->y()) r = std::max(r, y);
+    return r;
+  }
+
+  /// Applies the properties that are due at time t and step `step` (all active ones if `all`)
+  /// to the particles `p` of their groups (`members[group]`: current indices), or only to those
+  /// with only[i] != 0. `shape` gives volumes and inertia factors. Masses follow a radius at
+  /// constant density and a density at constant volume; heat capacities keep the specific heat
+  /// capacity; fixed particles (inverse mass 0) stay fixed.
+  template <class Particles, class Shape>
+  Changes apply(Particles& p, const Shape& shape,
+                const std::vector<std::vector<std::uint32_t>>& members, double t, long step,
+                bool all, const std::vector<char>* only = nullptr) {
+    constexpr bool thermal = requires { p.temperature; };
+    Changes c;
+    for (const auto& [vp, g] : list) {
+      if (!vp.active(t) || (!all && step % vp.every != 0)) continue;
+      c.any = true;
+      const Table& tab = *vp.table;
+      std::size_t hint = 0;
+      for (const auto i : members[g]) {
+        if (only && !(*only)[i]) continue;
+        double x = 0.0;
+        switch (vp.variable) {
+        case Variable::temperature:
+          if constexpr (thermal) x = p.temperature[i];
+          break;
+        case Variable::time: x = t; break;
+        case Variable::speed: x = p.velocity[i].norm(); break;
+        }
+        const double y = tab(x, hint);
+        const double vol = shape.volume(p.radius[i]);
+        const double density = p.mass[i] / vol;
+        [[maybe_unused]] double cs = 0.0; // specific heat capacity, kept
+        if constexpr (thermal) cs = p.heat_capacity[i] / p.mass[i];
+        auto set_mass = [&](double mass) {
+          p.mass[i] = mass;
+          if (p.inv_mass[i] != 0.0) p.inv_mass[i] = 1.0 / mass;
+          p.inertia[i] = shape.inertia_factor() * mass * p.radius[i] * p.radius[i];
+          if (p.inv_inertia[i] != 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
+          if constexpr (thermal) {
+            p.heat_capacity[i] = mass * cs;
+            if (p.inv_heat_capacity[i] != 0.0) p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
+          }
+        };
+        auto set_value = [&](std::size_t k) {
+          values[k][i] = y;
+          c.contact = true;
+        };
+        switch (vp.property) {
+        case Property::radius:
+          if (y != p.radius[i]) {
+            p.radius[i] = y;
+            set_mass(density * shape.volume(y));
+            c.radius = true;
+            c.thermal = true; // heat capacity and conductances change
+          }
+          break;
+        case Property::density:
+          set_mass(y * vol);
+          c.thermal = true; // the heat capacity m c changes
+          break;
+        case Property::heat_capacity:
+          c.thermal = true;
+          if constexpr (thermal) {
+            p.heat_capacity[i] = p.mass[i] * y;
+            p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
+          }
+          break;
+        case Property::young: set_value(0); break;
+        case Property::poisson: set_value(1); break;
+        case Property::restitution: set_value(2); break;
+        case Property::friction: set_value(3); break;
+        case Property::rolling_friction: set_value(4); break;
+        case Property::conductivity:
+          set_value(5);
+          c.thermal = true;
+          break;
+        }
+      }
+    }
+    return c;
+  }
+};
+
+} // namespace grain
