@@ -1,12 +1,12 @@
 // CSV time histories (io/csv.hpp): header, one flushed row per output, values equal to the
 // simulation's own figures.
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../support/csv_files.hpp"
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,20 +14,9 @@ using namespace grain;
 
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) out.push_back(cell);
-  return out;
-}
-
-std::vector<std::string> lines_of(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  return lines;
-}
+using grain::test::lines_of;
+using grain::test::scratch;
+using grain::test::split;
 
 } // namespace
 
@@ -109,12 +98,6 @@ namespace {
 using Sim3 = Simulation<Sphere, search::AllPairs, Interaction<normal::Hertz<>>>;
 using Sim2 = Simulation<Disk, search::AllPairs, Interaction<normal::Hertz<>>>;
 
-std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("grain_csv_test_" + name);
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
 /// The rows of a CSV file (header excluded) as numbers ("nan" -> NaN).
 std::vector<std::vector<double>> rows_of(const std::vector<std::string>& lines) {
   std::vector<std::vector<double>> rows;
@@ -152,7 +135,7 @@ TEST_CASE("io::particle_history: prescribed-velocity, free and fixed particles f
   sim.add_group("g", {10});
   const Vec3 vg(0.1, -0.2, 0.3);
   sim.fix_velocity("g", vg);
-  const auto dir = scratch("particles");
+  const auto dir = scratch("grain_csv_test_particles");
   const auto path = dir / "particles.csv";
   auto height = io::quantity("height", "m",
                              [](const Sim3& s, std::size_t i) { return s.particles().position[i].z(); });
@@ -221,7 +204,7 @@ TEST_CASE("io::particle_history in 2D: x, y columns, one omega and torque column
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0}, .radius = 1e-3, .material = m, .velocity = {1, -2},
                     .omega = 3.0, .id = 5});
-  const auto dir = scratch("particles2d");
+  const auto dir = scratch("grain_csv_test_particles2d");
   const auto path = dir / "p.csv";
   auto momentum = io::quantity("p", "kg m/s", [](const Sim2& s, std::size_t i) {
     return Vec2(s.particles().mass[i] * s.particles().velocity[i]);
@@ -253,7 +236,7 @@ TEST_CASE("io::particle_history: removed and waiting particles write nan, and a 
                   .destruction_time = 25e-4, .id = 0});
   s.add_particle({.position = {1, 0, 0}, .radius = 1e-3, .material = mat, .velocity = {0, 2, 0},
                   .creation_time = 15e-4, .id = 1});
-  const auto dir = scratch("removed");
+  const auto dir = scratch("grain_csv_test_removed");
   const auto path = dir / "p.csv";
   s.steps(40, io::every_steps(5, io::particle_history(path.string(), {0, 1}, io::position,
                                                       io::displacement)));
@@ -294,7 +277,7 @@ TEST_CASE("io::particle_history and io::group_history reject unknown or repeated
   Sim3 sim;
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .id = 3});
-  const auto dir = scratch("errors");
+  const auto dir = scratch("grain_csv_test_errors");
   const auto path = (dir / "p.csv").string();
   CHECK_THROWS_AS(io::particle_columns({3, 3}, io::position), InputError);
   CHECK_THROWS_AS(io::particle_columns({}, io::position), InputError);
@@ -323,7 +306,7 @@ TEST_CASE("io::group_history: count and means over the group's active particles"
                       .id = k});
   sim.add_group("hot", {0, 1, 2});
   sim.add_group("solo", {2});
-  const auto dir = scratch("group");
+  const auto dir = scratch("grain_csv_test_group");
   const auto path = dir / "g.csv";
   sim.steps(40, io::every_steps(10, io::csv(path.string(),
                                             io::group_columns("hot", io::velocity,
@@ -363,7 +346,7 @@ TEST_CASE("io::history with contact-force, lifecycle and dissipated-energy colum
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m});
   sim.add_particle({.position = {0, 0, 0.005 - 5e-7}, .radius = 0.005, .material = m});
   sim.add_particle({.position = {1, 0, 1}, .radius = 0.005, .material = m, .creation_time = 1.0});
-  const auto dir = scratch("extras");
+  const auto dir = scratch("grain_csv_test_extras");
   const auto path = dir / "h.csv";
   sim.steps(200, io::every_steps(50, io::history(path.string(), io::contact_force_columns(),
                                                  io::contact_force_columns(io::Contacts::particles),
@@ -408,7 +391,7 @@ struct WithDissipation {
 } // namespace
 
 TEST_CASE("io::csv dissipated_energy_column: present when the simulation has dissipated_energy()") {
-  const auto dir = scratch("dissipation");
+  const auto dir = scratch("grain_csv_test_dissipation");
   const auto path = dir / "d.csv";
   auto w = io::csv(path.string(), io::dissipated_energy_column());
   WithDissipation s;
@@ -436,7 +419,7 @@ TEST_CASE("io::history heat-flow columns and thermal particle columns match the 
                     .temperature = 300, .id = 0});
   sim.add_particle({.position = {0, 0, 0.015 - 1.5e-6}, .radius = 0.005, .material = m,
                     .temperature = 350, .id = 1});
-  const auto dir = scratch("heat");
+  const auto dir = scratch("grain_csv_test_heat");
   const auto path = dir / "h.csv";
   sim.steps(100, io::every_steps(50, io::history(path.string(), io::heat_flow_columns(),
                                                  io::particle_columns({1}, io::temperature,
@@ -476,7 +459,7 @@ TEST_CASE("csv rows are flushed: the file is valid CSV up to the last row at any
   Sim3 sim(p);
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .id = 4});
-  const auto dir = scratch("flushed");
+  const auto dir = scratch("grain_csv_test_flushed");
   const auto path = dir / "f.csv";
   std::size_t rows_written = 0;
   struct Stop {};
@@ -516,7 +499,7 @@ TEST_CASE("csv with io::every_steps: rows at the start, every n steps and at the
   Sim3 sim;
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m});
-  const auto dir = scratch("steps");
+  const auto dir = scratch("grain_csv_test_steps");
   auto steps_in = [](const std::filesystem::path& f) {
     std::vector<long> s;
     const auto lines = lines_of(f);

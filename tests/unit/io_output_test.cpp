@@ -2,6 +2,7 @@
 // writers report a write that did not reach the file (a failed checkpoint keeps the previous
 // one), and writers resumed after a checkpoint leave the files of an uninterrupted run.
 #include "../errors.hpp"
+#include "../support/csv_files.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -25,15 +26,10 @@ namespace {
 
 using Sim3 = Simulation<Sphere, search::AllPairs, Interaction<normal::Hertz<>>>;
 
-std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "grain_io_output_test" / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
 using grain::test::error_of;
+using grain::test::Folder;
 using grain::test::has;
+using grain::test::scratch;
 
 std::string file_text(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -129,7 +125,7 @@ TEST_CASE("a CSV history, an io::print file and a VTK series that cannot be writ
   CHECK(has(print, "grain::io::print"));
   CHECK(has(print, full_device));
   // the frames are written; the series file that lists them is not
-  const auto dir = scratch("series");
+  const auto dir = scratch("grain_io_output_test/series", Folder::empty);
   std::filesystem::create_symlink(full_device, dir / "bed_particles.vtk.series");
   const std::string series = error_of<std::runtime_error>(
       [&] { sim.run(1e-4, io::every(1e-5, io::vtk((dir / "bed").string()))); });
@@ -141,7 +137,7 @@ TEST_CASE("a CSV history, an io::print file and a VTK series that cannot be writ
 
 TEST_CASE("a CSV row that does not reach the file throws") {
   Sim3 sim = pile();
-  const auto dir = scratch("rows");
+  const auto dir = scratch("grain_io_output_test/rows", Folder::empty);
   const auto path = dir / "h.csv";
   auto out = io::every_steps(1, io::history(path.string(), io::lifecycle_columns()));
   sim.steps(4, out); // header and five rows
@@ -159,7 +155,7 @@ TEST_CASE("a CSV row that does not reach the file throws") {
 }
 
 TEST_CASE("checkpoint: a save that fails keeps the previous checkpoint and says why") {
-  const auto dir = scratch("checkpoint");
+  const auto dir = scratch("grain_io_output_test/checkpoint", Folder::empty);
   const std::string path = (dir / "run.ckpt").string();
   Sim3 sim = pile();
   sim.run(2e-3);
@@ -194,7 +190,8 @@ TEST_CASE("checkpoint: a save that fails keeps the previous checkpoint and says 
 // ------------------------------------------------------------------ restart
 TEST_CASE("writers resumed after a checkpoint leave the files of an uninterrupted run") {
   const double interval = 2e-3, end = 2e-2;
-  const auto whole = scratch("whole"), parts = scratch("parts");
+  const auto whole = scratch("grain_io_output_test/whole", Folder::empty),
+             parts = scratch("grain_io_output_test/parts", Folder::empty);
   const io::VtkOptions vtk{.plane_size = 0.02, .contacts = true};
   auto files_in = [](const std::filesystem::path& dir) {
     std::set<std::string> names;
@@ -239,7 +236,7 @@ TEST_CASE("writers resumed after a checkpoint leave the files of an uninterrupte
 }
 
 TEST_CASE("a resumed CSV writer keeps the file only if its columns are the same") {
-  const auto dir = scratch("columns");
+  const auto dir = scratch("grain_io_output_test/columns", Folder::empty);
   const auto path = dir / "h.csv";
   Sim3 sim = pile();
   sim.run(1e-4, io::every(2e-5, io::history(path.string())));

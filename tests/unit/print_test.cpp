@@ -1,12 +1,12 @@
 // Console output (io/console.hpp): io::print's aligned text, the end-of-run summary with the
 // particle lifecycle, and the progress line of runs with and without an end time.
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../support/csv_files.hpp"
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -23,11 +23,6 @@ std::vector<std::string> lines_in(const std::string& text) {
   std::istringstream in(text);
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   return lines;
-}
-
-std::string file_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Everything written to a temporary FILE*.
@@ -79,7 +74,7 @@ TEST_CASE("io::print to a text file: a header line, then aligned rows with the c
                                                          }),
                                               io::lifecycle_columns(),
                                               io::particle_columns({1}, io::position))));
-  const auto lines = lines_in(file_text(path));
+  const auto lines = grain::test::lines_of(path);
   REQUIRE(lines.size() == 6); // header + steps 0, 10, 20, 30, 40
   const std::vector<std::string> names = {"time [s]", "step", "speed_0 [m/s]", "active",
                                           "inactive", "removed", "x_1 [m]", "y_1 [m]", "z_1 [m]"};
