@@ -1,6 +1,7 @@
 // Input checks of conditions, the lifecycle and variable properties: the message names the
 // object, the value and the valid range, and a run never continues with an invalid value.
 
+#include "../support/materials.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/conduction/batchelor_obrien.hpp>
@@ -16,10 +17,8 @@ using Thermal = Interaction<normal::Hertz<>, tangent::None, rolling::None,
 using ThermalSim = Simulation<Sphere, search::CellList, Thermal>;
 using MechSim = Simulation<Sphere, search::CellList, presets::HertzMindlin>;
 
-Material glass() {
-  return {.name = "glass", .density = 2500, .young = 1e7, .poisson = 0.25, .conductivity = 1.0,
-          .heat_capacity = 800};
-}
+/// Glass with E = 1e7 Pa.
+Material glass() { return grain::test::glass(1e7); }
 
 } // namespace
 

@@ -58,6 +58,7 @@
 // after every step, linear interpolation of the zero crossings, parabolic peak refinement).
 
 #include "../support/impact.hpp"
+#include "../support/materials.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
@@ -71,6 +72,7 @@ namespace {
 
 using grain::test::Forces;
 using grain::test::Impact;
+using grain::test::material;
 using grain::test::measure_impact;
 
 using LsdContact = grain::Interaction<grain::normal::LinearSpringDashpot, grain::tangent::None>;
@@ -97,16 +99,6 @@ struct LsdReference {
     return v / omega0() * std::exp(-std::atan(beta) / beta);
   }
 };
-
-grain::Material material(double e) {
-  grain::Material m;
-  m.density = 2500.0;
-  m.young = 1.0e7; // enters only the Rayleigh time of the stability check
-  m.poisson = 0.25;
-  m.restitution = e;
-  m.friction = 0.0;
-  return m;
-}
 
 constexpr double stiffness = 1.0e3;    ///< K of the 3D cases [N/m]
 constexpr double stiffness_2d = 1.0e6; ///< K of the 2D cases [N/m per m of depth]

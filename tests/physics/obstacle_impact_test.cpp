@@ -17,6 +17,7 @@
 //   jumps, n = 2, see the linear restitution test): 3.7e-4 for e = 0.5 at dt = t_c/2000, and by
 //   O((omega0 dt)^2) for e = 1. The same impact with a moving walls::Plane agrees to 1e-9.
 
+#include "../support/materials.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
@@ -34,15 +35,7 @@ using namespace grain;
 using HertzContact = Interaction<normal::Hertz<>, tangent::None>;
 using HertzSim = Simulation<Sphere, search::CellList, HertzContact>;
 
-Material material(double e) {
-  Material m;
-  m.density = 2500.0;
-  m.young = 1e7;
-  m.poisson = 0.25;
-  m.restitution = e;
-  m.friction = 0.0;
-  return m;
-}
+using grain::test::material;
 
 walls::TriangleMesh square2() {
   return {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {{0, 1, 2}, {0, 2, 3}}};

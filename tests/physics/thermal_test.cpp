@@ -9,6 +9,7 @@
 
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/materials.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/conduction/batchelor_obrien.hpp>
@@ -33,10 +34,7 @@ using Sim3 = Simulation<Sphere, search::CellList, Thermal>;
 using Sim3Geo = Simulation<Sphere, search::AllPairs, ThermalGeo>;
 using Sim2 = Simulation<Disk, search::CellList, Thermal>;
 
-Material glass() {
-  return {.name = "glass", .density = 2500, .young = 7e10, .poisson = 0.25, .conductivity = 1.0,
-          .heat_capacity = 800};
-}
+using grain::test::glass;
 
 /// Two identical particles R = 0.01 m overlapping by 1e-4 m at 300 K and 400 K (section 4.1).
 template <class Sim>

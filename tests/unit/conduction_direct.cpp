@@ -2,10 +2,11 @@
 // correlations: closed forms, the collisional example of Sun & Chen / Zhou, Yu & Horio driven
 // through an integrated Hertz impact, the physical targets of the area corrections, and the
 // errors raised for bad parameters.
+#include "../approx.hpp"
+#include "../support/materials.hpp"
 #include <algorithm>
 #include <cmath>
 #include <doctest/doctest.h>
-#include "../approx.hpp"
 #include <grain/grain.hpp>
 #include <grain/models/area/lu_morris_li_benyahia.hpp>
 #include <grain/models/area/morris_pannala_ma_hrenya.hpp>
@@ -43,17 +44,7 @@ constexpr double pi = std::numbers::pi;
 
 // Glass-like spheres of verification.md 4.8: R = 1 mm, E = 70 GPa, nu = 0.25, rho = 2500,
 // c = 800, k = 1.
-Material glass(double young = 70e9, double young_real = 0.0) {
-  Material m;
-  m.name = "glass";
-  m.density = 2500.0;
-  m.young = young;
-  m.young_real = young_real;
-  m.poisson = 0.25;
-  m.conductivity = 1.0;
-  m.heat_capacity = 800.0;
-  return m;
-}
+using grain::test::glass;
 
 double sphere_mass(double r, double rho) { return rho * 4.0 / 3.0 * pi * r * r * r; }
 

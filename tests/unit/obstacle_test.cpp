@@ -16,6 +16,7 @@
 
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/materials.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -37,14 +38,7 @@ namespace {
 using Contact = Interaction<normal::Hertz<>, tangent::None>;
 using Sim = Simulation<Sphere, search::AllPairs, Contact>;
 
-Material material() {
-  Material m;
-  m.density = 2500.0;
-  m.young = 1e7;
-  m.restitution = 0.7;
-  m.friction = 0.0;
-  return m;
-}
+using grain::test::material; // restitution 0.7 in all cases here
 
 /// The unit square [0, 1]^2 at z = 0 in two triangles (diagonal (0, 0)-(1, 1)).
 walls::TriangleMesh square2() {
@@ -109,7 +103,7 @@ struct Probe {
   Sim sim;
   Obstacle ob;
   explicit Probe(const walls::TriangleMesh& m, const Vec3& reference = Vec3(0.3, 0.2, 0.1)) {
-    const auto k = sim.add_material(material());
+    const auto k = sim.add_material(material(0.7));
     ob = add_obstacle(sim, m, {.name = "probe", .material = k, .reference_point = reference});
   }
 };
@@ -459,7 +453,7 @@ TEST_CASE("obstacle: corners follow the rotation by the integral of the angular 
     Sim::Params prm;
     prm.time_step = dt;
     Sim sim(prm);
-    const auto k = sim.add_material(material());
+    const auto k = sim.add_material(material(0.7));
     ob = add_obstacle(sim, m,
                       {.name = "spinner",
                        .material = k,
@@ -528,7 +522,7 @@ TEST_CASE("obstacle: corners follow the rotation by the integral of the angular 
 
 TEST_CASE("obstacle input errors name the obstacle, the value and the valid range") {
   Sim sim;
-  const auto k = sim.add_material(material());
+  const auto k = sim.add_material(material(0.7));
   const ObstacleOptions o{.name = "hopper", .material = k};
   using test::error_of;
   using test::has;
@@ -602,7 +596,7 @@ TEST_CASE("obstacle input errors name the obstacle, the value and the valid rang
   CHECK(sim.walls().empty());
 
   // per-triangle materials: triangle k (wall first_wall + k) gets materials[k]
-  const auto k2 = sim.add_material(material());
+  const auto k2 = sim.add_material(material(0.7));
   const auto ob =
       add_obstacle(sim, square2(), {.name = "two", .material = k, .materials = {k2, k}});
   CHECK(sim.walls()[ob.wall(0)].options.material == k2);
@@ -618,7 +612,7 @@ TEST_CASE("obstacle from a list of triangles: equal corners become shared vertic
   CHECK(m.triangles[1][0] == 0);
   CHECK(m.triangles[1][1] == 2);
   Sim sim;
-  const auto k = sim.add_material(material());
+  const auto k = sim.add_material(material(0.7));
   const auto ob = add_obstacle(sim, tris, {.name = "sheet", .material = k});
   CHECK(ob.count == 2);
   CHECK(ob.walls() == std::vector<std::uint32_t>{0, 1});
@@ -636,7 +630,7 @@ TEST_CASE("obstacle: a checkpoint keeps the pose and the mesh features") {
     prm.time_step = 1e-4;
     prm.gravity = Vec3(0, 0, -9.81);
     Sim sim(prm);
-    const auto k = sim.add_material(material());
+    const auto k = sim.add_material(material(0.7));
     add_obstacle(sim, square8(),
                  {.name = "tray",
                   .material = k,

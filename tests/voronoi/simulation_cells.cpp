@@ -6,6 +6,7 @@
 #include <grain/thermal/voronoi.hpp>
 
 #include "../approx.hpp"
+#include "../support/materials.hpp"
 
 #include <cmath>
 #include <map>
@@ -16,10 +17,7 @@ using namespace grain;
 
 namespace {
 
-Material glass() {
-  return {.name = "glass", .density = 2500, .young = 7e10, .poisson = 0.25, .conductivity = 1.0,
-          .heat_capacity = 800};
-}
+using grain::test::glass;
 
 /// Conductances by particle-id pair of a thermal analysis of an n x n (x n) lattice, pitch s.
 template <class Sim>
