@@ -17,6 +17,7 @@
 #include "../approx.hpp"
 #include "../errors.hpp"
 #include "../support/materials.hpp"
+#include "../support/meshes.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -38,34 +39,12 @@ namespace {
 using Contact = Interaction<normal::Hertz<>, tangent::None>;
 using Sim = Simulation<Sphere, search::AllPairs, Contact>;
 
+using grain::test::box;
 using grain::test::material; // restitution 0.7 in all cases here
+using grain::test::moved;
+using grain::test::square2;
+using grain::test::square8;
 
-/// The unit square [0, 1]^2 at z = 0 in two triangles (diagonal (0, 0)-(1, 1)).
-walls::TriangleMesh square2() {
-  return {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {{0, 1, 2}, {0, 2, 3}}};
-}
-/// The unit square in eight triangles that all meet at the centre (vertex 4): a 3 x 3 grid of
-/// vertices, each quarter split by the diagonal through the centre. Vertices 1, 3, 5, 7 are the
-/// midpoints of the sides, where two boundary edges go on in a straight line.
-walls::TriangleMesh square8() {
-  walls::TriangleMesh m;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i)
-      m.vertices.push_back(Vec3(0.5 * i, 0.5 * j, 0));
-  m.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 4}, {2, 5, 4},
-                 {3, 4, 6}, {4, 7, 6}, {4, 5, 8}, {4, 8, 7}};
-  return m;
-}
-/// The box [lo, hi], each side split into two triangles.
-walls::TriangleMesh box(const Vec3& lo, const Vec3& hi) {
-  walls::TriangleMesh m;
-  for (int k = 0; k < 8; ++k)
-    m.vertices.push_back(
-        Vec3(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z()));
-  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return m;
-}
 /// A height field over [0, 1]^2: n x n cells with random heights in [-0.1, 0.1] (convex,
 /// concave and saddle vertices and folds), alternating diagonals.
 walls::TriangleMesh terrain(int n, unsigned seed) {
@@ -86,12 +65,6 @@ walls::TriangleMesh terrain(int n, unsigned seed) {
         m.triangles.push_back({v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)});
       }
     }
-  return m;
-}
-/// The mesh turned by R and shifted by s.
-walls::TriangleMesh moved(walls::TriangleMesh m, const Eigen::Matrix3d& R, const Vec3& s) {
-  for (auto& x : m.vertices)
-    x = R * x + s;
   return m;
 }
 Eigen::Matrix3d some_rotation() {
