@@ -48,6 +48,7 @@
 // slowly, 2 %); class C the mean relative deviation sum |d| / sum |ref| <= 5 % and every point
 // within max(10 % of its value, 5 % of the curve's largest magnitude).
 
+#include "../support/impact.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
@@ -65,6 +66,8 @@
 namespace {
 
 constexpr double pi = std::numbers::pi;
+
+using grain::test::HertzReference; // the Hertz closed form
 
 using Contact = grain::Interaction<grain::normal::Hertz<>, grain::tangent::SpringDashpotSlider>;
 
@@ -424,21 +427,6 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return y[k - 1] + w * (y[k] - y[k - 1]);
 }
 
-// ------------------------------------------------------------------ Hertz closed form
-
-/// t_c v / delta_max = (4/5) B(2/5, 1/2) = 2.94328.
-double hertz_time_factor() { return 0.8 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9); }
-
-struct HertzReference {
-  double m_eff = 0.0, r_eff = 0.0, e_eff = 0.0, v = 0.0;
-  double k_hertz() const { return 4.0 / 3.0 * e_eff * std::sqrt(r_eff); }
-  double delta_max() const {
-    return std::pow(15.0 * m_eff * v * v / (16.0 * e_eff * std::sqrt(r_eff)), 0.4);
-  }
-  double force_max() const { return k_hertz() * std::pow(delta_max(), 1.5); }
-  double contact_time() const { return hertz_time_factor() * delta_max() / v; }
-};
-
 // ------------------------------------------------------------------ one simulated impact
 
 /// Planar motion of a body: velocity along the normal x (towards the partner), along the
@@ -529,17 +517,6 @@ grain::Angular<D> spin(double w) {
 double spin_z(double w) { return w; }
 double spin_z(const grain::Vec3& w) { return w.z(); }
 
-/// Peak of equally spaced samples refined by the parabola through the three largest.
-double refined_peak(const std::vector<double>& y) {
-  if (y.empty()) return 0.0;
-  const auto it = std::max_element(y.begin(), y.end());
-  const auto k = static_cast<std::size_t>(it - y.begin());
-  if (k == 0 || k + 1 >= y.size()) return *it;
-  const double y0 = y[k - 1], y1 = y[k], y2 = y[k + 1];
-  const double c = y0 - 2.0 * y1 + y2;
-  return c >= 0.0 ? y1 : y1 - (y0 - y2) * (y0 - y2) / (8.0 * c);
-}
-
 /// Runs one impact: body 1 at the origin moves along +x towards the wall (or body 2), which it
 /// touches 3.37 steps later; the run ends two steps after the contact is over.
 template <int D>
@@ -588,41 +565,15 @@ ImpactOutcome simulate(const ImpactSpec& s) {
     b.omega = spin<D>(s.m2.w);
     ib = sim.add_particle(b);
   }
-  auto overlap = [&]() {
-    const auto& q = sim.particles();
-    const auto& x1 = q.position[sim.index_of(ia)];
+  auto overlap = [&](const Sim<D>& q) {
+    const auto& x1 = q.particles().position[q.index_of(ia)];
     if (s.wall) return s.r1 - (contact_x - x1.x());
-    return s.r1 + s.r2 - (q.position[sim.index_of(ib)] - x1).norm();
+    return s.r1 + s.r2 - (q.particles().position[q.index_of(ib)] - x1).norm();
   };
-  double t_prev = sim.time(), d_prev = overlap();
-  REQUIRE(d_prev < 0.0);
-  double t_on = -1.0, t_off = -1.0;
-  std::vector<double> deltas, forces, times;
-  const long max_steps = static_cast<long>(4.0 * s.steps) + 50;
-  long k = 0;
-  for (; k < max_steps; ++k) {
-    sim.step();
-    const double t = sim.time(), d = overlap();
-    if (d > 0.0) {
-      if (!(d_prev > 0.0)) t_on = t_prev + (t - t_prev) * (-d_prev) / (d - d_prev);
-      double f = 0.0;
-      sim.for_each_contact(
-          [&](auto, auto, bool, const auto&, const auto& r) { f += r.normal.force; });
-      deltas.push_back(d);
-      forces.push_back(f);
-      times.push_back(t);
-    } else if (d_prev > 0.0) {
-      t_off = t_prev + (t - t_prev) * d_prev / (d_prev - d);
-      break;
-    }
-    t_prev = t;
-    d_prev = d;
-  }
-  REQUIRE(k < max_steps);
-  REQUIRE(t_on >= 0.0);
+  const auto c = grain::test::trace_contact(sim, overlap, static_cast<long>(4.0 * s.steps) + 50);
   for (int extra = 0; extra < 2; ++extra)
     sim.step();
-  REQUIRE(overlap() < 0.0);
+  REQUIRE(overlap(sim) < 0.0);
   const auto& q = sim.particles();
   const auto i1 = sim.index_of(ia);
   out.m1 = {q.velocity[i1].x(), q.velocity[i1].y(), spin_z(q.omega[i1])};
@@ -630,15 +581,15 @@ ImpactOutcome simulate(const ImpactSpec& s) {
     const auto i2 = sim.index_of(ib);
     out.m2 = {q.velocity[i2].x(), q.velocity[i2].y(), spin_z(q.omega[i2])};
   }
-  out.contact_time = t_off - t_on;
-  out.delta_max = refined_peak(deltas);
-  out.force_max = refined_peak(forces);
-  out.contact_steps = static_cast<long>(deltas.size());
+  out.contact_time = c.t_off - c.t_on;
+  out.delta_max = grain::test::refined_peak(c.overlap);
+  out.force_max = grain::test::refined_peak(c.force);
+  out.contact_steps = static_cast<long>(c.overlap.size());
   if (s.record) {
-    out.overlap = deltas;
-    out.force = forces;
-    for (double t : times)
-      out.time.push_back(t - t_on);
+    out.overlap = c.overlap;
+    out.force = c.force;
+    for (double t : c.time)
+      out.time.push_back(t - c.t_on);
   }
   return out;
 }

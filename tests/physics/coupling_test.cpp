@@ -16,6 +16,7 @@
 //   it, and it falls freely under the system's gravity.
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/tables.hpp"
 #include <array>
 #include <cmath>
 #include <doctest/doctest.h>
@@ -45,9 +46,7 @@ const Material rubber{.name = "rubber",
                       .restitution = 1.0,
                       .friction = 0.0};
 
-Table linear_table(double k, double range = 10.0) {
-  return Table({-range, range}, {-k * range, k * range});
-}
+using grain::test::linear_table;
 
 Sim make_sim(double h) {
   Sim::Params p;

@@ -48,6 +48,7 @@
 // position sequence (the Verlet half-step velocity is the symplectic-Euler velocity), hence the
 // same rebound velocity up to round-off (1e-10).
 
+#include "../support/materials.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
@@ -71,15 +72,7 @@ double uniform(std::mt19937_64& rng, double lo, double hi) {
   return lo + (hi - lo) * u;
 }
 
-grain::Material material(double restitution, double friction) {
-  grain::Material m;
-  m.density = 2500.0;
-  m.young = 1.0e7; // enters only the Rayleigh time of the stability check
-  m.poisson = 0.25;
-  m.restitution = restitution;
-  m.friction = friction;
-  return m;
-}
+using grain::test::material;
 
 // ------------------------------------------------------------------ 6.2 elastic gas
 

@@ -23,105 +23,26 @@
 // the contact result, refined by the parabola through the three samples around the peak. The
 // restitution is the rebound normal relative velocity over the impact normal relative velocity.
 
+#include "../support/impact.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <vector>
 
 namespace {
+
+using grain::test::hertz_time_factor;
+using grain::test::HertzReference;
+using grain::test::Impact;
+using grain::test::measure_impact;
 
 using HertzContact = grain::Interaction<grain::normal::Hertz<>, grain::tangent::None>;
 
 /// 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 (verification reference, section 0).
 double effective_modulus(const grain::Material& a, const grain::Material& b) {
   return 1.0 / ((1.0 - a.poisson * a.poisson) / a.young + (1.0 - b.poisson * b.poisson) / b.young);
-}
-
-/// t_c v / delta_max = 2 int_0^1 dx / sqrt(1 - x^(5/2)) = (4/5) B(2/5, 1/2).
-double hertz_time_factor() { return 0.8 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9); }
-
-/// Closed-form undamped Hertz impact.
-struct HertzReference {
-  double m_eff = 0.0; ///< m* [kg]
-  double r_eff = 0.0; ///< R* [m]
-  double e_eff = 0.0; ///< E* [Pa]
-  double v = 0.0;     ///< impact normal velocity [m/s]
-
-  double k_hertz() const { return 4.0 / 3.0 * e_eff * std::sqrt(r_eff); }
-  double delta_max() const {
-    return std::pow(15.0 * m_eff * v * v / (16.0 * e_eff * std::sqrt(r_eff)), 0.4);
-  }
-  double force_max() const { return k_hertz() * std::pow(delta_max(), 1.5); }
-  double contact_time() const { return hertz_time_factor() * delta_max() / v; }
-};
-
-/// What one simulated impact produced.
-struct Impact {
-  double delta_max = 0.0;    ///< [m]
-  double force_max = 0.0;    ///< [N]
-  double contact_time = 0.0; ///< [s]
-  double restitution = 0.0;  ///< rebound / impact normal relative velocity
-  long contact_steps = 0;    ///< number of samples with overlap > 0
-};
-
-/// Peak of equally spaced samples, refined by the parabola through the largest one and its two
-/// neighbours.
-double refined_peak(const std::vector<double>& y) {
-  const auto it = std::max_element(y.begin(), y.end());
-  const auto k = static_cast<std::size_t>(it - y.begin());
-  if (k == 0 || k + 1 >= y.size()) return *it;
-  const double y0 = y[k - 1], y1 = y[k], y2 = y[k + 1];
-  const double curvature = y0 - 2.0 * y1 + y2;
-  if (curvature >= 0.0) return y1;
-  return y1 - (y0 - y2) * (y0 - y2) / (8.0 * curvature);
-}
-
-/// Steps `sim` through one impact. `overlap(sim)` is the signed overlap from the positions
-/// (negative while apart), `approach(sim)` the normal relative velocity (positive approaching).
-template <class Sim, class Overlap, class Approach>
-Impact measure_impact(Sim& sim, Overlap overlap, Approach approach, long max_steps) {
-  Impact out;
-  const double v_in = approach(sim);
-  double t_prev = sim.time();
-  double d_prev = overlap(sim);
-  REQUIRE(d_prev < 0.0);
-  double t_on = -1.0, t_off = -1.0;
-  std::vector<double> deltas, forces;
-  long k = 0;
-  for (; k < max_steps; ++k) {
-    sim.step();
-    const double t = sim.time(), d = overlap(sim);
-    if (d > 0.0) {
-      double f = 0.0;
-      sim.for_each_contact(
-          [&](auto, auto, bool, const auto&, const auto& r) { f += r.normal.force; });
-      deltas.push_back(d);
-      forces.push_back(f);
-      if (!(d_prev > 0.0)) t_on = t_prev + (t - t_prev) * (-d_prev) / (d - d_prev);
-    } else if (d_prev > 0.0) {
-      t_off = t_prev + (t - t_prev) * d_prev / (d_prev - d);
-      break;
-    }
-    t_prev = t;
-    d_prev = d;
-  }
-  REQUIRE(k < max_steps); // the contact ended
-  REQUIRE(t_on >= 0.0);
-  // free flight afterwards: the velocities are final
-  for (int extra = 0; extra < 3; ++extra) {
-    sim.step();
-    REQUIRE(overlap(sim) < 0.0);
-  }
-  out.delta_max = refined_peak(deltas);
-  out.force_max = refined_peak(forces);
-  out.contact_time = t_off - t_on;
-  out.restitution = -approach(sim) / v_in;
-  out.contact_steps = static_cast<long>(deltas.size());
-  return out;
 }
 
 grain::Material particle_material(double young, double poisson, double density) {
@@ -194,22 +115,10 @@ Impact sphere_sphere(double steps_per_contact, HertzReference& ref) {
   a.position = grain::Vec3(0.0, 0.0, 0.0);
   a.radius = r1;
   a.material = mg;
-  a.velocity = grain::Vec3(v1, 0.0, 0.0);
-  b.position = grain::Vec3(r1 + r2 + gap, 0.0, 0.0);
   b.radius = r2;
   b.material = ms;
-  b.velocity = grain::Vec3(v2, 0.0, 0.0);
-  const auto ia = sim.add_particle(a);
-  const auto ib = sim.add_particle(b);
-  auto overlap = [&](const auto& s) {
-    const auto& q = s.particles();
-    return r1 + r2 - (q.position[s.index_of(ib)] - q.position[s.index_of(ia)]).norm();
-  };
-  auto approach = [&](const auto& s) {
-    const auto& q = s.particles();
-    return q.velocity[s.index_of(ia)].x() - q.velocity[s.index_of(ib)].x();
-  };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact) + 20);
+  const auto pair = grain::test::add_head_on(sim, a, b, grain::Vec3(1.0, 0.0, 0.0), v1, v2, gap);
+  return measure_impact(sim, pair, static_cast<long>(2.0 * steps_per_contact) + 20);
 }
 
 Impact sphere_plane(double steps_per_contact, HertzReference& ref) {
@@ -233,10 +142,9 @@ Impact sphere_plane(double steps_per_contact, HertzReference& ref) {
   s.radius = r;
   s.material = mg;
   s.velocity = grain::Vec3(0.0, 0.0, -v);
-  const auto id = sim.add_particle(s);
-  auto overlap = [&](const auto& q) { return r - q.particles().position[q.index_of(id)].z(); };
-  auto approach = [&](const auto& q) { return -q.particles().velocity[q.index_of(id)].z(); };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact) + 20);
+  const grain::test::WallMeasure<grain::Vec3> wall{sim.add_particle(s), r, grain::Vec3::Zero(),
+                                                   grain::Vec3::UnitZ()};
+  return measure_impact(sim, wall, static_cast<long>(2.0 * steps_per_contact) + 20);
 }
 
 Impact disk_disk(double steps_per_contact, HertzReference& ref) {
@@ -259,22 +167,10 @@ Impact disk_disk(double steps_per_contact, HertzReference& ref) {
   a.position = grain::Vec2(0.01, -0.02);
   a.radius = r1;
   a.material = mm;
-  a.velocity = v1 * n;
-  b.position = a.position + (r1 + r2 + gap) * n;
   b.radius = r2;
   b.material = mm;
-  b.velocity = v2 * n;
-  const auto ia = sim.add_particle(a);
-  const auto ib = sim.add_particle(b);
-  auto overlap = [&](const auto& s) {
-    const auto& q = s.particles();
-    return r1 + r2 - (q.position[s.index_of(ib)] - q.position[s.index_of(ia)]).norm();
-  };
-  auto approach = [&](const auto& s) {
-    const auto& q = s.particles();
-    return (q.velocity[s.index_of(ia)] - q.velocity[s.index_of(ib)]).dot(n);
-  };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact) + 20);
+  const auto pair = grain::test::add_head_on(sim, a, b, n, v1, v2, gap);
+  return measure_impact(sim, pair, static_cast<long>(2.0 * steps_per_contact) + 20);
 }
 
 Impact disk_segment(double steps_per_contact, HertzReference& ref) {
@@ -298,10 +194,9 @@ Impact disk_segment(double steps_per_contact, HertzReference& ref) {
   s.radius = r;
   s.material = mm;
   s.velocity = grain::Vec2(0.0, -v);
-  const auto id = sim.add_particle(s);
-  auto overlap = [&](const auto& q) { return r - q.particles().position[q.index_of(id)].y(); };
-  auto approach = [&](const auto& q) { return -q.particles().velocity[q.index_of(id)].y(); };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact) + 20);
+  const grain::test::WallMeasure<grain::Vec2> wall{sim.add_particle(s), r, grain::Vec2::Zero(),
+                                                   grain::Vec2::UnitY()};
+  return measure_impact(sim, wall, static_cast<long>(2.0 * steps_per_contact) + 20);
 }
 
 template <class Case>

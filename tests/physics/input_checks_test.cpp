@@ -1,6 +1,7 @@
 // Input checks of conditions, the lifecycle and variable properties: the message names the
 // object, the value and the valid range, and a run never continues with an invalid value.
 
+#include "../support/materials.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/conduction/batchelor_obrien.hpp>
@@ -11,15 +12,13 @@ using namespace grain;
 
 namespace {
 
-using Thermal = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                            conduction::BatchelorOBrien>;
+using Thermal =
+    Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
 using ThermalSim = Simulation<Sphere, search::CellList, Thermal>;
 using MechSim = Simulation<Sphere, search::CellList, presets::HertzMindlin>;
 
-Material glass() {
-  return {.name = "glass", .density = 2500, .young = 1e7, .poisson = 0.25, .conductivity = 1.0,
-          .heat_capacity = 800};
-}
+/// Glass with E = 1e7 Pa.
+Material glass() { return grain::test::glass(1e7); }
 
 } // namespace
 
@@ -79,8 +78,8 @@ TEST_CASE("input checks: a variable conductivity bounds the time step and cannot
     sim.add_material(glass());
     sim.add_particle({.position = {0, 0, 0}, .radius = 0.01, .temperature = 400});
     sim.add_particle({.position = {0.0199, 0, 0}, .radius = 0.01, .temperature = 300});
-    sim.add_variable_property({"all", Property::conductivity, Variable::time,
-                               Table({{0.0, 1.0}, {10.0, 1000.0}})});
+    sim.add_variable_property(
+        {"all", Property::conductivity, Variable::time, Table({{0.0, 1.0}, {10.0, 1000.0}})});
     return sim;
   };
   // the automatic step follows the largest table value: R^2 rho c / k_max
@@ -96,7 +95,8 @@ TEST_CASE("input checks: a variable conductivity bounds the time step and cannot
   ThermalSim given = make(20.0);
   CHECK_THROWS_WITH_AS(given.run(200.0), doctest::Contains("above the conduction limit"),
                        InputError);
-  for (double T : given.particles().temperature) CHECK(std::isfinite(T));
+  for (double T : given.particles().temperature)
+    CHECK(std::isfinite(T));
 }
 
 namespace {

@@ -54,20 +54,26 @@
 // Verlet) adds a systematic first-order error that phase averaging does not remove: effectively
 // the mass becomes m* (1 - zeta omega0 dt), giving e = 0.0979 for e = 0.1 and delta_max 0.9 % low
 // at dt = t_c/200; the checks above are meant to detect it.
-// Measurement of delta_max, t_c and e as in the Hertz impact test (overlap from the positions
+// Measurement of delta_max, t_c and e by grain::test::measure_impact (overlap from the positions
 // after every step, linear interpolation of the zero crossings, parabolic peak refinement).
 
+#include "../support/impact.hpp"
+#include "../support/materials.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
 namespace {
+
+using grain::test::Forces;
+using grain::test::Impact;
+using grain::test::material;
+using grain::test::measure_impact;
 
 using LsdContact = grain::Interaction<grain::normal::LinearSpringDashpot, grain::tangent::None>;
 
@@ -93,68 +99,6 @@ struct LsdReference {
     return v / omega0() * std::exp(-std::atan(beta) / beta);
   }
 };
-
-struct Impact {
-  double delta_max = 0.0;
-  double contact_time = 0.0;
-  double restitution = 0.0;
-};
-
-double refined_peak(const std::vector<double>& y) {
-  const auto it = std::max_element(y.begin(), y.end());
-  const auto k = static_cast<std::size_t>(it - y.begin());
-  if (k == 0 || k + 1 >= y.size()) return *it;
-  const double y0 = y[k - 1], y1 = y[k], y2 = y[k + 1];
-  const double curvature = y0 - 2.0 * y1 + y2;
-  if (curvature >= 0.0) return y1;
-  return y1 - (y0 - y2) * (y0 - y2) / (8.0 * curvature);
-}
-
-/// Steps `sim` through one impact; see the Hertz impact test for the measurement.
-template <class Sim, class Overlap, class Approach>
-Impact measure_impact(Sim& sim, Overlap overlap, Approach approach, long max_steps) {
-  Impact out;
-  const double v_in = approach(sim);
-  double t_prev = sim.time();
-  double d_prev = overlap(sim);
-  REQUIRE(d_prev < 0.0);
-  double t_on = -1.0, t_off = -1.0;
-  std::vector<double> deltas;
-  long k = 0;
-  for (; k < max_steps; ++k) {
-    sim.step();
-    const double t = sim.time(), d = overlap(sim);
-    if (d > 0.0) {
-      deltas.push_back(d);
-      if (!(d_prev > 0.0)) t_on = t_prev + (t - t_prev) * (-d_prev) / (d - d_prev);
-    } else if (d_prev > 0.0) {
-      t_off = t_prev + (t - t_prev) * d_prev / (d_prev - d);
-      break;
-    }
-    t_prev = t;
-    d_prev = d;
-  }
-  REQUIRE(k < max_steps);
-  REQUIRE(t_on >= 0.0);
-  for (int extra = 0; extra < 3; ++extra) {
-    sim.step();
-    REQUIRE(overlap(sim) < 0.0);
-  }
-  out.delta_max = refined_peak(deltas);
-  out.contact_time = t_off - t_on;
-  out.restitution = -approach(sim) / v_in;
-  return out;
-}
-
-grain::Material material(double e) {
-  grain::Material m;
-  m.density = 2500.0;
-  m.young = 1.0e7; // enters only the Rayleigh time of the stability check
-  m.poisson = 0.25;
-  m.restitution = e;
-  m.friction = 0.0;
-  return m;
-}
 
 constexpr double stiffness = 1.0e3;    ///< K of the 3D cases [N/m]
 constexpr double stiffness_2d = 1.0e6; ///< K of the 2D cases [N/m per m of depth]
@@ -188,12 +132,9 @@ Impact sphere_plane(double e, bool clamp, double phase, LsdReference& ref) {
   s.radius = r;
   s.material = mm;
   s.velocity = grain::Vec3(0.0, 0.0, -v);
-  const auto id = sim.add_particle(s);
-  auto overlap = [&](const auto& q) {
-    return r - (q.particles().position[q.index_of(id)].z() + 0.01);
-  };
-  auto approach = [&](const auto& q) { return -q.particles().velocity[q.index_of(id)].z(); };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact));
+  const grain::test::WallMeasure<grain::Vec3> wall{
+      sim.add_particle(s), r, grain::Vec3(0.0, 0.0, -0.01), grain::Vec3::UnitZ()};
+  return measure_impact<Forces::skip>(sim, wall, static_cast<long>(2.0 * steps_per_contact));
 }
 
 /// 3D head-on collision of two spheres of different radii (`spc` steps per contact).
@@ -213,22 +154,10 @@ Impact sphere_sphere(double e, bool clamp, double phase, LsdReference& ref,
   a.position = grain::Vec3(0.001, 0.002, 0.003);
   a.radius = r1;
   a.material = mm;
-  a.velocity = v1 * n;
-  b.position = a.position + (r1 + r2 + ref.v * dt * (3.0 + phase)) * n;
   b.radius = r2;
   b.material = mm;
-  b.velocity = v2 * n;
-  const auto ia = sim.add_particle(a);
-  const auto ib = sim.add_particle(b);
-  auto overlap = [&](const auto& s) {
-    const auto& q = s.particles();
-    return r1 + r2 - (q.position[s.index_of(ib)] - q.position[s.index_of(ia)]).norm();
-  };
-  auto approach = [&](const auto& s) {
-    const auto& q = s.particles();
-    return (q.velocity[s.index_of(ia)] - q.velocity[s.index_of(ib)]).dot(n);
-  };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * spc));
+  const auto pair = grain::test::add_head_on(sim, a, b, n, v1, v2, ref.v * dt * (3.0 + phase));
+  return measure_impact<Forces::skip>(sim, pair, static_cast<long>(2.0 * spc));
 }
 
 /// 2D disk hitting a segment wall of the same material.
@@ -248,12 +177,9 @@ Impact disk_segment(double e, bool clamp, double phase, LsdReference& ref) {
   s.radius = r;
   s.material = mm;
   s.velocity = grain::Vec2(v, 0.0);
-  const auto id = sim.add_particle(s);
-  auto overlap = [&](const auto& q) {
-    return r - (0.02 - q.particles().position[q.index_of(id)].x());
-  };
-  auto approach = [&](const auto& q) { return q.particles().velocity[q.index_of(id)].x(); };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact));
+  const grain::test::WallMeasure<grain::Vec2> wall{sim.add_particle(s), r, grain::Vec2(0.02, 0.0),
+                                                   grain::Vec2(-1.0, 0.0)};
+  return measure_impact<Forces::skip>(sim, wall, static_cast<long>(2.0 * steps_per_contact));
 }
 
 /// 2D head-on collision of two disks of different radii.
@@ -271,22 +197,10 @@ Impact disk_disk(double e, bool clamp, double phase, LsdReference& ref) {
   a.position = grain::Vec2(-0.003, 0.004);
   a.radius = r1;
   a.material = mm;
-  a.velocity = v1 * n;
-  b.position = a.position + (r1 + r2 + ref.v * dt * (3.0 + phase)) * n;
   b.radius = r2;
   b.material = mm;
-  b.velocity = v2 * n;
-  const auto ia = sim.add_particle(a);
-  const auto ib = sim.add_particle(b);
-  auto overlap = [&](const auto& s) {
-    const auto& q = s.particles();
-    return r1 + r2 - (q.position[s.index_of(ib)] - q.position[s.index_of(ia)]).norm();
-  };
-  auto approach = [&](const auto& s) {
-    const auto& q = s.particles();
-    return (q.velocity[s.index_of(ia)] - q.velocity[s.index_of(ib)]).dot(n);
-  };
-  return measure_impact(sim, overlap, approach, static_cast<long>(2.0 * steps_per_contact));
+  const auto pair = grain::test::add_head_on(sim, a, b, n, v1, v2, ref.v * dt * (3.0 + phase));
+  return measure_impact<Forces::skip>(sim, pair, static_cast<long>(2.0 * steps_per_contact));
 }
 
 constexpr std::array<double, 5> targets = {0.1, 0.3, 0.5, 0.7, 0.9};

@@ -17,6 +17,8 @@
 //   jumps, n = 2, see the linear restitution test): 3.7e-4 for e = 0.5 at dt = t_c/2000, and by
 //   O((omega0 dt)^2) for e = 1. The same impact with a moving walls::Plane agrees to 1e-9.
 
+#include "../support/materials.hpp"
+#include "../support/meshes.hpp"
 #include <grain/grain.hpp>
 
 #include <doctest/doctest.h>
@@ -34,34 +36,11 @@ using namespace grain;
 using HertzContact = Interaction<normal::Hertz<>, tangent::None>;
 using HertzSim = Simulation<Sphere, search::CellList, HertzContact>;
 
-Material material(double e) {
-  Material m;
-  m.density = 2500.0;
-  m.young = 1e7;
-  m.poisson = 0.25;
-  m.restitution = e;
-  m.friction = 0.0;
-  return m;
-}
-
-walls::TriangleMesh square2() {
-  return {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {{0, 1, 2}, {0, 2, 3}}};
-}
-/// Eight triangles meeting at the centre (0.5, 0.5).
-walls::TriangleMesh square8() {
-  walls::TriangleMesh m;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i)
-      m.vertices.push_back(Vec3(0.5 * i, 0.5 * j, 0));
-  m.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 4}, {2, 5, 4},
-                 {3, 4, 6}, {4, 7, 6}, {4, 5, 8}, {4, 8, 7}};
-  return m;
-}
-walls::TriangleMesh moved(walls::TriangleMesh m, const Eigen::Matrix3d& R, const Vec3& s) {
-  for (auto& x : m.vertices)
-    x = R * x + s;
-  return m;
-}
+using grain::test::box;
+using grain::test::material;
+using grain::test::moved;
+using grain::test::square2;
+using grain::test::square8;
 
 /// One bounce: the largest overlap with the plane of the floor, the rebound normal velocity and
 /// the most wall contacts at one step.
@@ -210,11 +189,7 @@ TEST_CASE("obstacle: a sphere sliding across the shared diagonal feels the plane
 TEST_CASE("obstacle: a sphere hitting a convex edge of a box has one contact, the edge's") {
   // box [0, 1] x [0, 1] x [-1, 0], each side two triangles; the sphere comes along the bisector
   // of the top and front faces onto the edge y = 0, z = 0
-  walls::TriangleMesh box;
-  for (int k = 0; k < 8; ++k)
-    box.vertices.push_back(Vec3(k & 1 ? 1.0 : 0.0, k & 2 ? 1.0 : 0.0, k & 4 ? 0.0 : -1.0));
-  box.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                   {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  const walls::TriangleMesh cube = box(Vec3(0, 0, -1), Vec3(1, 1, 0));
   const double r = 0.05, v = 1.0;
   const Vec3 bisector = Vec3(0, -1, 1).normalized();
   auto run = [&](bool edge, Vec3& velocity, std::size_t& most, double& worst_normal) {
@@ -223,7 +198,7 @@ TEST_CASE("obstacle: a sphere hitting a convex edge of a box has one contact, th
     HertzSim sim(prm);
     const auto k = sim.add_material(material(0.7));
     if (edge)
-      add_obstacle(sim, box,
+      add_obstacle(sim, cube,
                    {.name = "box", .material = k, .reference_point = Vec3(0.5, 0.5, -0.5)});
     else // the plane through the edge, perpendicular to the bisector
       sim.add_wall(walls::Plane{Vec3(0.4, 0, 0), bisector}, {.material = k});

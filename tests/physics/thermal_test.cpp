@@ -9,6 +9,7 @@
 
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/materials.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/conduction/batchelor_obrien.hpp>
@@ -25,18 +26,15 @@ using namespace grain;
 
 namespace {
 
-using Thermal = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                            conduction::BatchelorOBrien>;
+using Thermal =
+    Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
 using ThermalGeo = Interaction<normal::Hertz<>, tangent::None, rolling::None,
                                conduction::BatchelorOBrien, area::Geometric>;
 using Sim3 = Simulation<Sphere, search::CellList, Thermal>;
 using Sim3Geo = Simulation<Sphere, search::AllPairs, ThermalGeo>;
 using Sim2 = Simulation<Disk, search::CellList, Thermal>;
 
-Material glass() {
-  return {.name = "glass", .density = 2500, .young = 7e10, .poisson = 0.25, .conductivity = 1.0,
-          .heat_capacity = 800};
-}
+using grain::test::glass;
 
 /// Two identical particles R = 0.01 m overlapping by 1e-4 m at 300 K and 400 K (section 4.1).
 template <class Sim>
@@ -131,8 +129,8 @@ TEST_CASE("4.2 particle on an isothermal wall") {
   const auto w = sim.add_material(wall_mat);
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}},
                {.name = "hot plate", .material = w, .temperature = TimeFunction(400.0)});
-  sim.add_particle({.position = {0, 0, 0.01 - 1e-4}, .radius = 0.01, .material = m,
-                    .temperature = 300});
+  sim.add_particle(
+      {.position = {0, 0, 0.01 - 1e-4}, .radius = 0.01, .material = m, .temperature = 300});
   sim.initialize();
   const double C = 2500 * 4.0 / 3.0 * std::numbers::pi * 1e-6 * 800;
   const double H = 4.0 * (1.0 * 3.0 / 4.0) * std::sqrt(0.01 * 1e-4);
@@ -153,8 +151,8 @@ TEST_CASE("4.2 particle on an isothermal wall") {
     const auto m2 = s2.add_material(glass());
     const auto w2 = s2.add_material(wall_mat);
     s2.add_wall(walls::Segment{{-1, 0}, {1, 0}}, {.material = w2, .temperature = 400.0});
-    s2.add_particle({.position = {0, 0.01 - 1e-4}, .radius = 0.01, .material = m2,
-                     .temperature = 300});
+    s2.add_particle(
+        {.position = {0, 0.01 - 1e-4}, .radius = 0.01, .material = m2, .temperature = 300});
     s2.steps(400);
     const double C2 = 2500 * std::numbers::pi * 1e-4 * 800;
     CHECK(temperature_of(s2, 0) ==
@@ -172,15 +170,23 @@ TEST_CASE("4.2 thermo-mechanical: a steel sphere resting on a wall conducts thro
   Sim3::Params p;
   p.gravity = {0, 0, -9.81};
   Sim3 sim(p);
-  const auto steel = sim.add_material({.name = "steel", .density = 7800, .young = 200e9,
-                                       .poisson = 0.3, .restitution = 0.05, .conductivity = 16,
+  const auto steel = sim.add_material({.name = "steel",
+                                       .density = 7800,
+                                       .young = 200e9,
+                                       .poisson = 0.3,
+                                       .restitution = 0.05,
+                                       .conductivity = 16,
                                        .heat_capacity = 500});
-  const auto rigid = sim.add_material({.name = "rigid steel", .density = 7800, .young = 200e15,
-                                       .poisson = 0.3, .restitution = 0.05, .conductivity = 16,
+  const auto rigid = sim.add_material({.name = "rigid steel",
+                                       .density = 7800,
+                                       .young = 200e15,
+                                       .poisson = 0.3,
+                                       .restitution = 0.05,
+                                       .conductivity = 16,
                                        .heat_capacity = 500});
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = rigid, .temperature = 310.0});
-  sim.add_particle({.position = {0, 0, 0.005}, .radius = 0.005, .material = steel,
-                    .temperature = 300});
+  sim.add_particle(
+      {.position = {0, 0, 0.005}, .radius = 0.005, .material = steel, .temperature = 300});
   sim.initialize();
   sim.run(2e-3);
   const auto& q = sim.particles();
@@ -220,8 +226,11 @@ TEST_CASE("4.4 chain of 10 spheres between a hot and a cold wall: steady profile
   sim.add_wall(walls::Plane{{2 * x0 + (N - 1) * pitch, 0, 0}, {-1, 0, 0}},
                {.material = m, .temperature = TR});
   for (int i = 0; i < N; ++i)
-    sim.add_particle({.position = {x0 + i * pitch, 0, 0}, .radius = R, .material = m,
-                      .temperature = TL, .id = i});
+    sim.add_particle({.position = {x0 + i * pitch, 0, 0},
+                      .radius = R,
+                      .material = m,
+                      .temperature = TL,
+                      .id = i});
   sim.initialize();
   CHECK(sim.conduction_time_step() == grain::test::approx(C / (2 * H)).epsilon(1e-12));
   // the slowest mode from the late-time decay of the deviation from the steady state
@@ -269,12 +278,16 @@ TEST_CASE("4.5 simple-cubic lattice between a hot and a cold wall: k_e = H/(2R)"
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i)
-        sim.add_particle({.position = {i * pitch, j * pitch, z0 + k * pitch}, .radius = R,
-                          .material = m, .temperature = 300.0, .id = id++});
+        sim.add_particle({.position = {i * pitch, j * pitch, z0 + k * pitch},
+                          .radius = R,
+                          .material = m,
+                          .temperature = 300.0,
+                          .id = id++});
   sim.steps(12000);
   auto layer_mean = [&](int k) {
     double s = 0;
-    for (int q = 0; q < nx * ny; ++q) s += temperature_of(sim, k * nx * ny + q);
+    for (int q = 0; q < nx * ny; ++q)
+      s += temperature_of(sim, k * nx * ny + q);
     return s / (nx * ny);
   };
   // flux through the contacts between layers 4 and 5, per unit area
@@ -297,21 +310,28 @@ TEST_CASE("heat is conserved to round-off in an insulated thermo-mechanical pack
     (void)threads;
 #endif
     using Sim = Simulation<Disk, search::CellList,
-                           Interaction<normal::Hertz<>, tangent::SpringDashpotSlider,
-                                       rolling::None, conduction::BatchelorOBrien>>;
+                           Interaction<normal::Hertz<>, tangent::SpringDashpotSlider, rolling::None,
+                                       conduction::BatchelorOBrien>>;
     Sim::Params p;
     p.gravity = {0, -9.81};
     Sim sim(p);
-    const auto m = sim.add_material({.name = "soft glass", .density = 2500, .young = 1e7,
-                                     .poisson = 0.25, .restitution = 0.3, .friction = 0.4,
-                                     .conductivity = 1.0, .heat_capacity = 800});
+    const auto m = sim.add_material({.name = "soft glass",
+                                     .density = 2500,
+                                     .young = 1e7,
+                                     .poisson = 0.25,
+                                     .restitution = 0.3,
+                                     .friction = 0.4,
+                                     .conductivity = 1.0,
+                                     .heat_capacity = 800});
     sim.add_wall(walls::Segment{{0, 0}, {0.23, 0}}, {.material = m});
     sim.add_wall(walls::Segment{{0, 0}, {0, 0.8}}, {.material = m});
     sim.add_wall(walls::Segment{{0.23, 0}, {0.23, 0.8}}, {.material = m});
     for (int k = 0; k < 1200; ++k) {
       const double x = 0.01 + 0.011 * (k % 20), y = 0.01 + 0.011 * (k / 20);
-      sim.add_particle({.position = {x, y}, .radius = 0.004 + 0.0005 * ((k * 7) % 3),
-                        .material = m, .temperature = 300.0 + double((k * 37) % 101)});
+      sim.add_particle({.position = {x, y},
+                        .radius = 0.004 + 0.0005 * ((k * 7) % 3),
+                        .material = m,
+                        .temperature = 300.0 + double((k * 37) % 101)});
     }
     const double e0 = sim.thermal_energy();
     sim.run(0.2);
@@ -369,7 +389,8 @@ TEST_CASE("thermal input errors name the object, the value and the valid range")
     Mech sim;
     const auto k = sim.add_material(glass());
     CHECK_THROWS_WITH_AS(
-        sim.add_particle({.position = {0, 0, 0}, .radius = 0.01, .material = k, .temperature = 300}),
+        sim.add_particle(
+            {.position = {0, 0, 0}, .radius = 0.01, .material = k, .temperature = 300}),
         doctest::Contains("no conduction model"), InputError);
     static_assert(!Mech::thermal);
     static_assert(!HasTemperature<Mech::Particles>);
@@ -388,19 +409,27 @@ TEST_CASE("heat from dissipation: a sphere sliding to rolling heats by half the 
   // takes the other half): m c dT = (E_mech(0) - E_mech(t))/2, E_mech = kinetic + potential +
   // elastic. Tolerance 1 %: the heat integrates the dissipated power with the step's velocities,
   // the energy balance follows the integrator (first order in dt).
-  using Sim = Simulation<Sphere, search::AllPairs,
-                         Interaction<normal::Hertz<>, tangent::Slider, rolling::None,
-                                     conduction::BatchelorOBrien>>;
+  using Sim = Simulation<
+      Sphere, search::AllPairs,
+      Interaction<normal::Hertz<>, tangent::Slider, rolling::None, conduction::BatchelorOBrien>>;
   Sim::Params p;
   p.gravity = {0, 0, -9.81};
   p.dissipation_heating = 1.0;
   Sim sim(p);
-  const auto m = sim.add_material({.name = "steel", .density = 7800, .young = 2e9,
-                                   .poisson = 0.3, .restitution = 0.5, .friction = 0.3,
-                                   .conductivity = 40, .heat_capacity = 500});
+  const auto m = sim.add_material({.name = "steel",
+                                   .density = 7800,
+                                   .young = 2e9,
+                                   .poisson = 0.3,
+                                   .restitution = 0.5,
+                                   .friction = 0.3,
+                                   .conductivity = 40,
+                                   .heat_capacity = 500});
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m});
-  sim.add_particle({.position = {0, 0, 0.005}, .radius = 0.005, .material = m,
-                    .velocity = {1.0, 0, 0}, .temperature = 300});
+  sim.add_particle({.position = {0, 0, 0.005},
+                    .radius = 0.005,
+                    .material = m,
+                    .velocity = {1.0, 0, 0},
+                    .temperature = 300});
   sim.initialize();
   auto mech = [&] { return sim.kinetic_energy() + sim.potential_energy() + sim.elastic_energy(); };
   const double e0 = mech();
@@ -424,19 +453,25 @@ TEST_CASE("the seed's resting_single model: direct + surrounding-layer conductio
   // docs/models/conduction_indirect.md); convection h S = (2 k_f / 2R) 4 pi R^2 = 125.66 W/K
   // (reference 125.7). Checked: the initial heat rate (class A, 1e-12) and the lumped steady
   // temperature (H_w T_w + h S T_f)/(H_w + h S) (class A after convergence, 1e-9).
-  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                              conduction::Combined<conduction::BatchelorOBrien,
-                                                   conduction::SurroundingLayer>,
-                              area::Geometric>;
+  using Contact =
+      Interaction<normal::Hertz<>, tangent::None, rolling::None,
+                  conduction::Combined<conduction::BatchelorOBrien, conduction::SurroundingLayer>,
+                  area::Geometric>;
   using Sim = Simulation<Sphere, search::AllPairs, Contact, convection::RanzMarshall>;
   Sim::Params p;
   p.analysis = Analysis::thermal;
-  p.fluid = {.temperature = 250, .density = 1.2, .viscosity = 1.8e-5, .conductivity = 10,
+  p.fluid = {.temperature = 250,
+             .density = 1.2,
+             .viscosity = 1.8e-5,
+             .conductivity = 10,
              .heat_capacity = 1000};
   p.time_step = 1e-3; // tau = C / sum H = 1.69 s
   Sim sim(p);
-  const auto m = sim.add_material({.name = "resting_single", .density = 30, .young = 1e6,
-                                   .conductivity = 1000, .heat_capacity = 20});
+  const auto m = sim.add_material({.name = "resting_single",
+                                   .density = 30,
+                                   .young = 1e6,
+                                   .conductivity = 1000,
+                                   .heat_capacity = 20});
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m, .temperature = 400.0});
   sim.add_particle({.position = {0, 0, 0.99}, .radius = 1.0, .material = m, .temperature = 300});
   sim.initialize();
@@ -515,8 +550,8 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
   // Surrounding layer across a 10 um gap between two R = 1 mm spheres (k_f = 0.026): H =
   // 2.98279e-4 W/K (verification 4.6); forward Euler relaxation exact to round-off.
   {
-    using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                                conduction::SurroundingLayer>;
+    using Contact =
+        Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::SurroundingLayer>;
     using Sim = Simulation<Sphere, search::CellList, Contact>;
     static_assert(Contact::indirect);
     Sim::Params p;
@@ -526,8 +561,8 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
     Sim sim(p);
     const auto m = sim.add_material(glass());
     sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .temperature = 300});
-    sim.add_particle({.position = {2e-3 + 1e-5, 0, 0}, .radius = 1e-3, .material = m,
-                      .temperature = 400});
+    sim.add_particle(
+        {.position = {2e-3 + 1e-5, 0, 0}, .radius = 1e-3, .material = m, .temperature = 400});
     sim.initialize();
     const double C = 2500 * 4.0 / 3.0 * std::numbers::pi * 1e-9 * 800;
     const double H = 2.98279e-4;
@@ -539,8 +574,8 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
   // Voronoi B with the global porosity given (0.4): r_ij = 0.56 R (0.6)^(-1/3) = 0.6640 R; at a
   // Hertz contact radius a = 10 um (overlap 2 a^2 / R) H = 1.63679e-4 W/K (verification 4.7).
   {
-    using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                                conduction::VoronoiB>;
+    using Contact =
+        Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::VoronoiB>;
     using Sim = Simulation<Sphere, search::CellList, Contact, cells::GlobalPorosity>;
     Sim::Params p;
     p.analysis = Analysis::thermal;
@@ -551,8 +586,8 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
     const auto m = sim.add_material(glass());
     const double a = 1e-5, delta = 2 * a * a / 1e-3;
     sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .temperature = 300});
-    sim.add_particle({.position = {2e-3 - delta, 0, 0}, .radius = 1e-3, .material = m,
-                      .temperature = 400});
+    sim.add_particle(
+        {.position = {2e-3 - delta, 0, 0}, .radius = 1e-3, .material = m, .temperature = 400});
     sim.initialize();
     double H = 0;
     sim.for_each_conductance([&](std::size_t, std::size_t, bool, double h) { H += h; });
@@ -562,18 +597,24 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
 
 TEST_CASE("a thermal analysis sees its contacts at rest: the collisional model gives the static "
           "conductance whatever velocities the particles were given") {
-  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                              conduction::Collisional>;
+  using Contact =
+      Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::Collisional>;
   using Sim = Simulation<Sphere, search::AllPairs, Contact>;
   Sim::Params p;
   p.analysis = Analysis::thermal;
   p.time_step = 1.0;
   Sim sim(p);
   const auto m = sim.add_material(glass());
-  sim.add_particle({.position = {0, 0, 0}, .radius = 0.01, .material = m,
-                    .velocity = {1.0, 0, 0}, .temperature = 300});
-  sim.add_particle({.position = {0.02 - 1e-4, 0, 0}, .radius = 0.01, .material = m,
-                    .velocity = {-1.0, 0, 0}, .temperature = 400});
+  sim.add_particle({.position = {0, 0, 0},
+                    .radius = 0.01,
+                    .material = m,
+                    .velocity = {1.0, 0, 0},
+                    .temperature = 300});
+  sim.add_particle({.position = {0.02 - 1e-4, 0, 0},
+                    .radius = 0.01,
+                    .material = m,
+                    .velocity = {-1.0, 0, 0},
+                    .temperature = 400});
   sim.initialize();
   double H = 0;
   sim.for_each_conductance([&](std::size_t, std::size_t, bool, double h) { H += h; });
@@ -593,8 +634,8 @@ TEST_CASE("a wall temperature given as a time function, and convection to a flui
     const auto m = sim.add_material(glass());
     const TimeFunction tw = TimeFunction::table({{0.0, 300.0}, {100.0, 300.0}, {110.0, 400.0}});
     sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m, .temperature = tw});
-    sim.add_particle({.position = {0, 0, 0.01 - 1e-4}, .radius = 0.01, .material = m,
-                      .temperature = 300});
+    sim.add_particle(
+        {.position = {0, 0, 0.01 - 1e-4}, .radius = 0.01, .material = m, .temperature = 300});
     sim.initialize();
     const double C = 2500 * 4.0 / 3.0 * std::numbers::pi * 1e-6 * 800;
     const double H = 4.0 * 0.5 * std::sqrt(0.01 * 1e-4);
@@ -615,7 +656,10 @@ TEST_CASE("a wall temperature given as a time function, and convection to a flui
     typename Sim::Params p;
     p.analysis = Analysis::thermal;
     p.time_step = 10.0;
-    p.fluid = {.temperature = 350, .density = 1.2, .viscosity = 1.8e-5, .conductivity = 0.026,
+    p.fluid = {.temperature = 350,
+               .density = 1.2,
+               .viscosity = 1.8e-5,
+               .conductivity = 0.026,
                .heat_capacity = 1000};
     Sim sim(p);
     const auto m = sim.add_material(glass());

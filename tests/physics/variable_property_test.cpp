@@ -15,6 +15,7 @@
 // - statistics of known velocities: counts, totals, means, extremes; free particles only.
 
 #include "../approx.hpp"
+#include "../support/materials.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -35,15 +36,12 @@ using FrictionSim = Simulation<Sphere, search::CellList, presets::LinearCoulomb>
 
 constexpr double pi = std::numbers::pi;
 
+/// Glass (grain::test::glass), elastic and without friction.
 Material glass() {
-  return {.name = "glass",
-          .density = 2500,
-          .young = 7e10,
-          .poisson = 0.25,
-          .restitution = 1.0,
-          .friction = 0.0,
-          .conductivity = 1.0,
-          .heat_capacity = 800};
+  Material m = grain::test::glass();
+  m.restitution = 1.0;
+  m.friction = 0.0;
+  return m;
 }
 
 } // namespace

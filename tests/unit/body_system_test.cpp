@@ -4,6 +4,7 @@
 // unspring rule in the loop, and input validation.
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/tables.hpp"
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -42,9 +43,7 @@ gb::RigidBody body(double m, double j, const Vec3& x, const Vec3& v = Vec3::Zero
   return b;
 }
 
-Table linear_table(double k, double range = 10.0) {
-  return Table({-range, range}, {-k * range, k * range});
-}
+using grain::test::linear_table;
 
 /// Mean period of upward zero crossings of the samples x(t_k) (linear interpolation).
 struct Crossings {

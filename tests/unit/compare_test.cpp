@@ -1,6 +1,7 @@
 // Comparing model variants (io/compare.hpp): one row per variant, figures equal to those of the
 // same simulation run by hand, the table as CSV, the histories, and the input errors.
 #include "../approx.hpp"
+#include "../support/csv_files.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -16,6 +17,10 @@
 using namespace grain;
 
 namespace {
+
+using grain::test::lines_of;
+using grain::test::scratch;
+using grain::test::split;
 
 using BOB = Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
 using BOBZhou = Interaction<normal::Hertz<>, tangent::None, rolling::None,
@@ -87,29 +92,6 @@ std::vector<double> by_hand() {
   return out;
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ','))
-    out.push_back(cell);
-  return out;
-}
-
-std::vector<std::string> lines_of(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);)
-    lines.push_back(l);
-  return lines;
-}
-
-std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("grain_compare_test_" + name);
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
 /// A column set that gives no columns.
 struct NoColumns {
   template <class Sim>
@@ -147,7 +129,7 @@ struct NamedByModel {
 
 TEST_CASE("io::compare: one row per variant, figures bit-identical to runs by hand, CSV table "
           "and histories") {
-  const auto dir = scratch("table");
+  const auto dir = scratch("grain_compare_test_table");
   const auto table =
       io::compare<Column>(variants<BOB, Pipe>{}, column_scenario,
                           {.duration = duration,
@@ -306,7 +288,7 @@ TEST_CASE("io::compare: default names are the models in which the variants diffe
 }
 
 TEST_CASE("io::compare: input errors name the value and the valid range, before any run") {
-  const auto dir = scratch("errors");
+  const auto dir = scratch("grain_compare_test_errors");
   int made = 0; // simulations the scenario made
   auto counted = [&made]<class Sim>(std::type_identity<Sim>) {
     ++made;

@@ -2,10 +2,11 @@
 // correlations: closed forms, the collisional example of Sun & Chen / Zhou, Yu & Horio driven
 // through an integrated Hertz impact, the physical targets of the area corrections, and the
 // errors raised for bad parameters.
+#include "../approx.hpp"
+#include "../support/materials.hpp"
 #include <algorithm>
 #include <cmath>
 #include <doctest/doctest.h>
-#include "../approx.hpp"
 #include <grain/grain.hpp>
 #include <grain/models/area/lu_morris_li_benyahia.hpp>
 #include <grain/models/area/morris_pannala_ma_hrenya.hpp>
@@ -43,17 +44,7 @@ constexpr double pi = std::numbers::pi;
 
 // Glass-like spheres of verification.md 4.8: R = 1 mm, E = 70 GPa, nu = 0.25, rho = 2500,
 // c = 800, k = 1.
-Material glass(double young = 70e9, double young_real = 0.0) {
-  Material m;
-  m.name = "glass";
-  m.density = 2500.0;
-  m.young = young;
-  m.young_real = young_real;
-  m.poisson = 0.25;
-  m.conductivity = 1.0;
-  m.heat_capacity = 800.0;
-  return m;
-}
+using grain::test::glass;
 
 double sphere_mass(double r, double rho) { return rho * 4.0 / 3.0 * pi * r * r * r; }
 
@@ -125,7 +116,8 @@ TEST_CASE("ThermalPipe: closed form for spheres, cylinders, unequal radii and co
   // symmetric in the partners (round-off)
   const PairProperties pair21 = PairProperties::mix(m2, m);
   const auto g21 = contact(2 * r, r, 8e-5, 1e-5, 3 * r - d12, 0.0);
-  CHECK(M::conductance(g21, pair21, touching(a, d12), p, h) == grain::test::approx(h12).epsilon(1e-12));
+  CHECK(M::conductance(g21, pair21, touching(a, d12), p, h) ==
+        grain::test::approx(h12).epsilon(1e-12));
   // an insulating partner conducts nothing
   Material ins = glass();
   ins.conductivity = 0.0;
@@ -197,16 +189,16 @@ TEST_CASE("Collisional: impact coefficients of the Sun-Chen example (verificatio
   const double c1 = -2.3 + 8.909 - 4.235, c2 = 8.169 - 33.77 + 24.885,
                c3 = -5.758 + 24.464 - 20.511;
   const double fo = 0.0029;
-  CHECK(
-      M::correction(1.0, fo) ==
-      grain::test::approx(0.435 * (std::sqrt(c2 * c2 - 4 * c1 * (c3 - fo)) - c2) / c1).epsilon(1e-12));
+  CHECK(M::correction(1.0, fo) ==
+        grain::test::approx(0.435 * (std::sqrt(c2 * c2 - 4 * c1 * (c3 - fo)) - c2) / c1)
+            .epsilon(1e-12));
   // at b = 0.5 (C2 > 0) the same quadratic root, from the other branch (round-off)
   {
     const double b = 0.5, d1 = -2.3 * b * b + 8.909 * b - 4.235;
     const double d2 = 8.169 * b * b - 33.77 * b + 24.885, d3 = -5.758 * b * b + 24.464 * b - 20.511;
-    CHECK(
-        M::correction(b, fo) ==
-        grain::test::approx(0.435 * (std::sqrt(d2 * d2 - 4 * d1 * (d3 - fo)) - d2) / d1).epsilon(1e-9));
+    CHECK(M::correction(b, fo) ==
+          grain::test::approx(0.435 * (std::sqrt(d2 * d2 - 4 * d1 * (d3 - fo)) - d2) / d1)
+              .epsilon(1e-9));
   }
   // finite and positive where C1 vanishes (b = 0.5548, 3.319) and over 0.01 <= b <= 20
   for (double b : {0.01, 0.1, 0.5548, 1.0, 2.0, 3.319, 5.0, 20.0})
@@ -277,15 +269,14 @@ TEST_CASE("Collisional: switch to Batchelor-O'Brien after t_c, resting contacts,
   CHECK(h4 == grain::test::approx(0.5 * im.conductance + 0.5 * bob).epsilon(1e-12));
   q += h4 * dt;
   // heat over the first 4 steps = H_coll t_c + BOB (4 dt - t_c), whatever dt (round-off)
-  CHECK(
-      q ==
-      grain::test::approx(im.conductance * im.duration + bob * (4 * dt - im.duration)).epsilon(1e-12));
+  CHECK(q == grain::test::approx(im.conductance * im.duration + bob * (4 * dt - im.duration))
+                 .epsilon(1e-12));
   // afterwards the enduring contact conducts as Batchelor-O'Brien, 4 k* a (round-off)
   for (int n = 0; n < 5; ++n)
     CHECK(M::conductance(g_in, pair, c, M::Params{}, h) == grain::test::approx(bob).epsilon(1e-12));
   conduction::BatchelorOBrien::History<3> hb;
   CHECK(bob == grain::test::approx(conduction::BatchelorOBrien::conductance(
-                                   g_rest, pair, c, conduction::BatchelorOBrien::Params{}, hb))
+                                       g_rest, pair, c, conduction::BatchelorOBrien::Params{}, hb))
                    .epsilon(1e-12));
 
   // a new impact after the simulation reset the history starts afresh
@@ -300,7 +291,8 @@ TEST_CASE("Collisional: switch to Batchelor-O'Brien after t_c, resting contacts,
     CHECK(M::conductance(contact(r, r, mass, mass, 1e-7, v0), pair, c, M::Params{}, hr) ==
           grain::test::approx(bob).epsilon(1e-12));
     CHECK(hr.duration < 0.0);
-    CHECK(M::conductance(g_in, pair, c, M::Params{}, hr) == grain::test::approx(bob).epsilon(1e-12));
+    CHECK(M::conductance(g_in, pair, c, M::Params{}, hr) ==
+          grain::test::approx(bob).epsilon(1e-12));
   }
 
   // a partner without heat capacity: no impact phase, BOB throughout
@@ -328,9 +320,9 @@ TEST_CASE("Collisional: particle-wall impact uses the particle's Fourier number"
   const auto im = M::impact(pair, r, mass, 0.8, true, M::Params{});
   CHECK(hc == grain::test::approx(im.conductance).epsilon(1e-12));
   // Fo = k_p t_c / (rho_p c_p a_max^2) of the particle alone (round-off)
-  CHECK(
-      im.fourier ==
-      grain::test::approx(1.0 * im.duration / (2500.0 * 800.0 * im.radius * im.radius)).epsilon(1e-12));
+  CHECK(im.fourier ==
+        grain::test::approx(1.0 * im.duration / (2500.0 * 800.0 * im.radius * im.radius))
+            .epsilon(1e-12));
   // H_coll = C pi a_max^2 t_c^(-1/2) / ((rho c k)_p^(-1/2) + (rho c k)_w^(-1/2)), with
   // C = C(b = rho_p c_p/(rho_w c_w), Fo) (round-off)
   const double b = 2500.0 * 800.0 / (7800.0 * 500.0);
@@ -405,7 +397,8 @@ TEST_CASE("Area corrections: static Hertz load, real radius a* = (3 F R*/(4 E*_0
   // MPMH and LMLB give the real Hertz radius at that force (round-off, 1e-12)
   CHECK(area::MorrisPannalaMaHrenya::radius(g, soft, n, {}) ==
         grain::test::approx(a_star).epsilon(1e-12));
-  CHECK(area::LuMorrisLiBenyahia::radius(g, soft, n, {}) == grain::test::approx(a_star).epsilon(1e-12));
+  CHECK(area::LuMorrisLiBenyahia::radius(g, soft, n, {}) ==
+        grain::test::approx(a_star).epsilon(1e-12));
   // LMLB: the real overlap delta_0 = (E*/E*_0)^(2/3) delta, a' = sqrt(R* delta_0) (round-off)
   CHECK(area::LuMorrisLiBenyahia::radius(g, soft, n, {}) ==
         grain::test::approx(std::sqrt(r_eff * std::pow(1e-3, 2.0 / 3.0) * delta)).epsilon(1e-12));
@@ -428,7 +421,8 @@ TEST_CASE("Area corrections: static Hertz load, real radius a* = (3 F R*/(4 E*_0
   CHECK(area::ZhouYuZulli::radius(gr, real, nr, {}) == grain::test::approx(a_h).epsilon(1e-12));
   CHECK(area::MorrisPannalaMaHrenya::radius(gr, real, nr, {}) ==
         grain::test::approx(a_h).epsilon(1e-12));
-  CHECK(area::LuMorrisLiBenyahia::radius(gr, real, nr, {}) == grain::test::approx(a_h).epsilon(1e-12));
+  CHECK(area::LuMorrisLiBenyahia::radius(gr, real, nr, {}) ==
+        grain::test::approx(a_h).epsilon(1e-12));
 }
 
 TEST_CASE("Area corrections: damping, linear springs, walls and negative forces") {
@@ -444,8 +438,9 @@ TEST_CASE("Area corrections: damping, linear springs, walls and negative forces"
         grain::test::approx(std::cbrt(0.75 * k * delta * r_eff / e0)).epsilon(1e-12));
   // equivalently sqrt(R* delta_0), delta_0 = (K delta / K_hz,0)^(2/3) (round-off)
   const double kh0 = 4.0 / 3.0 * e0 * std::sqrt(r_eff);
-  CHECK(area::LuMorrisLiBenyahia::radius(g, soft, n, {}) ==
-        grain::test::approx(std::sqrt(r_eff * std::pow(k * delta / kh0, 2.0 / 3.0))).epsilon(1e-12));
+  CHECK(
+      area::LuMorrisLiBenyahia::radius(g, soft, n, {}) ==
+      grain::test::approx(std::sqrt(r_eff * std::pow(k * delta / kh0, 2.0 / 3.0))).epsilon(1e-12));
   // MPMH: the total normal force (round-off)
   CHECK(area::MorrisPannalaMaHrenya::radius(g, soft, n, {}) ==
         grain::test::approx(std::cbrt(0.75 * (k * delta + eta * vn) * r_eff / e0)).epsilon(1e-12));

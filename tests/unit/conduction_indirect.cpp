@@ -4,6 +4,10 @@
 //
 // Tolerances: doctest::Approx(x).epsilon(e) is relative only with .scale(0) (its default scale
 // 1 turns e into an absolute bound for the small conductances here), hence `rel(x, e)`.
+#include "../errors.hpp"
+#include <algorithm>
+#include <cmath>
+#include <doctest/doctest.h>
 #include <grain/core/quadrature.hpp>
 #include <grain/grain.hpp>
 #include <grain/models/conduction/batchelor_obrien.hpp>
@@ -11,10 +15,6 @@
 #include <grain/models/conduction/surrounding_layer.hpp>
 #include <grain/models/conduction/voronoi_a.hpp>
 #include <grain/models/conduction/voronoi_b.hpp>
-#include <doctest/doctest.h>
-#include <algorithm>
-#include <cmath>
-#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -43,6 +43,9 @@ static_assert(ContactVA::thermal && ContactVA::indirect && ContactVA::needs_cell
 static_assert(ContactSL::thermal && ContactSL::indirect && !ContactSL::needs_cell_radius);
 
 namespace {
+
+using grain::test::error_of;
+using grain::test::has;
 
 constexpr double pi = std::numbers::pi;
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -104,20 +107,6 @@ double H(const ContactGeometry<D>& g, const PairProperties& p, const HeatContext
 /// Porosity-based cell radius 0.56 R (1 - phi)^(-1/3).
 double cell_radius(double R, double porosity) {
   return 0.56 * R * std::pow(1.0 - porosity, -1.0 / 3.0);
-}
-
-std::string error_of(auto&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return {};
-}
-bool has(const std::string& s, std::initializer_list<const char*> parts) {
-  for (const char* p : parts)
-    if (s.find(p) == std::string::npos) return false;
-  return !s.empty();
 }
 
 } // namespace

@@ -1,12 +1,12 @@
 // CSV time histories (io/csv.hpp): header, one flushed row per output, values equal to the
 // simulation's own figures.
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../support/csv_files.hpp"
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,36 +14,29 @@ using namespace grain;
 
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) out.push_back(cell);
-  return out;
-}
-
-std::vector<std::string> lines_of(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  return lines;
-}
+using grain::test::lines_of;
+using grain::test::scratch;
+using grain::test::split;
 
 } // namespace
 
 TEST_CASE("io::history writes the global quantities of a thermal simulation, flushed row by row") {
-  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                              conduction::BatchelorOBrien>;
+  using Contact =
+      Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
   using Sim = Simulation<Sphere, search::AllPairs, Contact>;
   Sim::Params p;
   p.gravity = {0, 0, -9.81};
   Sim sim(p);
-  const auto m = sim.add_material({.name = "steel", .density = 7800, .young = 2e9, .poisson = 0.3,
-                                   .conductivity = 40, .heat_capacity = 500});
+  const auto m = sim.add_material({.name = "steel",
+                                   .density = 7800,
+                                   .young = 2e9,
+                                   .poisson = 0.3,
+                                   .conductivity = 40,
+                                   .heat_capacity = 500});
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m, .temperature = 400.0});
   // resting on the wall near its static Hertz overlap (5.3e-7 m)
-  sim.add_particle({.position = {0, 0, 0.005 - 5e-7}, .radius = 0.005, .material = m,
-                    .temperature = 300});
+  sim.add_particle(
+      {.position = {0, 0, 0.005 - 5e-7}, .radius = 0.005, .material = m, .temperature = 300});
   const auto dir = std::filesystem::temp_directory_path() / "grain_csv_test";
   std::filesystem::remove_all(dir);
   const auto path = dir / "history.csv";
@@ -51,13 +44,13 @@ TEST_CASE("io::history writes the global quantities of a thermal simulation, flu
   const double interval = 20 * sim.time_step();
   std::size_t rows_seen_during_run = 0;
   auto probe = [&](const Sim&) { rows_seen_during_run = lines_of(path).size(); };
-  sim.steps(200, io::every(interval,
-                           io::history(path.string(),
-                                       io::column("z [m]",
-                                                  [](const Sim& s) {
-                                                    return s.particles().position[0].z();
-                                                  })),
-                           probe));
+  sim.steps(200,
+            io::every(interval,
+                      io::history(path.string(), io::column("z [m]",
+                                                            [](const Sim& s) {
+                                                              return s.particles().position[0].z();
+                                                            })),
+                      probe));
   const auto lines = lines_of(path);
   // header + rows at steps 0, 20, ..., 200
   REQUIRE(lines.size() == 12);
@@ -109,25 +102,22 @@ namespace {
 using Sim3 = Simulation<Sphere, search::AllPairs, Interaction<normal::Hertz<>>>;
 using Sim2 = Simulation<Disk, search::AllPairs, Interaction<normal::Hertz<>>>;
 
-std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("grain_csv_test_" + name);
-  std::filesystem::remove_all(dir);
-  return dir;
-}
-
 /// The rows of a CSV file (header excluded) as numbers ("nan" -> NaN).
 std::vector<std::vector<double>> rows_of(const std::vector<std::string>& lines) {
   std::vector<std::vector<double>> rows;
   for (std::size_t k = 1; k < lines.size(); ++k) {
     std::vector<double> row;
-    for (const auto& c : split(lines[k])) row.push_back(std::stod(c));
+    for (const auto& c : split(lines[k]))
+      row.push_back(std::stod(c));
     rows.push_back(row);
   }
   return rows;
 }
 
 template <class S>
-concept has_dissipated_energy = requires(const S& s) { s.dissipated_energy(); };
+concept has_dissipated_energy = requires(const S& s) {
+  s.dissipated_energy();
+};
 
 std::size_t column_of(const std::vector<std::string>& header, const std::string& name) {
   for (std::size_t k = 0; k < header.size(); ++k)
@@ -146,16 +136,20 @@ TEST_CASE("io::particle_history: prescribed-velocity, free and fixed particles f
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   // far apart: no contacts
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .id = 10});
-  sim.add_particle({.position = {1, 0, 0}, .radius = 2e-3, .material = m, .velocity = {0.5, 0, 2},
-                    .omega = Vec3(1, 2, 3), .id = 11});
+  sim.add_particle({.position = {1, 0, 0},
+                    .radius = 2e-3,
+                    .material = m,
+                    .velocity = {0.5, 0, 2},
+                    .omega = Vec3(1, 2, 3),
+                    .id = 11});
   sim.add_particle({.position = {2, 0, 0}, .radius = 1e-3, .material = m, .fixed = true, .id = 12});
   sim.add_group("g", {10});
   const Vec3 vg(0.1, -0.2, 0.3);
   sim.fix_velocity("g", vg);
-  const auto dir = scratch("particles");
+  const auto dir = scratch("grain_csv_test_particles");
   const auto path = dir / "particles.csv";
-  auto height = io::quantity("height", "m",
-                             [](const Sim3& s, std::size_t i) { return s.particles().position[i].z(); });
+  auto height = io::quantity(
+      "height", "m", [](const Sim3& s, std::size_t i) { return s.particles().position[i].z(); });
   sim.steps(50, io::every_steps(10, io::particle_history(path.string(), {10, 11, 12}, io::position,
                                                          io::displacement, io::velocity,
                                                          io::acceleration, io::omega, io::force,
@@ -190,7 +184,7 @@ TEST_CASE("io::particle_history: prescribed-velocity, free and fixed particles f
     CHECK(at("z_10 [m]") == tol(vg.z() * t));
     CHECK(at("uz_10 [m]") == tol(vg.z() * t));
     if (r > 0) CHECK(at("vy_10 [m/s]") == tol(vg.y())); // prescribed from the first step on
-    CHECK(at("az_10 [m/s^2]") == tol(g)); // its forces (the weight) over its mass
+    CHECK(at("az_10 [m/s^2]") == tol(g));               // its forces (the weight) over its mass
     // free under gravity: x = x0 + v0 t + g t^2/2 (velocity Verlet is exact here)
     CHECK(at("x_11 [m]") == tol(1.0 + 0.5 * t));
     CHECK(at("z_11 [m]") == tol(2.0 * t + 0.5 * g * t * t));
@@ -219,15 +213,19 @@ TEST_CASE("io::particle_history in 2D: x, y columns, one omega and torque column
           "quantities") {
   Sim2 sim;
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
-  sim.add_particle({.position = {0, 0}, .radius = 1e-3, .material = m, .velocity = {1, -2},
-                    .omega = 3.0, .id = 5});
-  const auto dir = scratch("particles2d");
+  sim.add_particle({.position = {0, 0},
+                    .radius = 1e-3,
+                    .material = m,
+                    .velocity = {1, -2},
+                    .omega = 3.0,
+                    .id = 5});
+  const auto dir = scratch("grain_csv_test_particles2d");
   const auto path = dir / "p.csv";
   auto momentum = io::quantity("p", "kg m/s", [](const Sim2& s, std::size_t i) {
     return Vec2(s.particles().mass[i] * s.particles().velocity[i]);
   });
-  sim.steps(4, io::every_steps(2, io::particle_history(path.string(), {5}, io::position,
-                                                       io::omega, io::torque, momentum)));
+  sim.steps(4, io::every_steps(2, io::particle_history(path.string(), {5}, io::position, io::omega,
+                                                       io::torque, momentum)));
   const auto lines = lines_of(path);
   REQUIRE(lines.size() == 4);
   CHECK(lines[0] == "time [s],step,x_5 [m],y_5 [m],omega_5 [rad/s],torque_5 [N m],px_5 [kg m/s],"
@@ -249,14 +247,22 @@ TEST_CASE("io::particle_history: removed and waiting particles write nan, and a 
   p.time_step = 1e-4;
   Sim3 s(p); // no gravity
   const auto mat = s.add_material({.name = "glass", .density = 2500, .young = 1e5});
-  s.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = mat, .velocity = {1, 0, 0},
-                  .destruction_time = 25e-4, .id = 0});
-  s.add_particle({.position = {1, 0, 0}, .radius = 1e-3, .material = mat, .velocity = {0, 2, 0},
-                  .creation_time = 15e-4, .id = 1});
-  const auto dir = scratch("removed");
+  s.add_particle({.position = {0, 0, 0},
+                  .radius = 1e-3,
+                  .material = mat,
+                  .velocity = {1, 0, 0},
+                  .destruction_time = 25e-4,
+                  .id = 0});
+  s.add_particle({.position = {1, 0, 0},
+                  .radius = 1e-3,
+                  .material = mat,
+                  .velocity = {0, 2, 0},
+                  .creation_time = 15e-4,
+                  .id = 1});
+  const auto dir = scratch("grain_csv_test_removed");
   const auto path = dir / "p.csv";
-  s.steps(40, io::every_steps(5, io::particle_history(path.string(), {0, 1}, io::position,
-                                                      io::displacement)));
+  s.steps(40, io::every_steps(
+                  5, io::particle_history(path.string(), {0, 1}, io::position, io::displacement)));
   const auto lines = lines_of(path);
   REQUIRE(lines.size() == 10); // steps 0, 5, ..., 40
   CHECK(lines[0] == "time [s],step,x_0 [m],y_0 [m],z_0 [m],ux_0 [m],uy_0 [m],uz_0 [m],x_1 [m],"
@@ -266,20 +272,23 @@ TEST_CASE("io::particle_history: removed and waiting particles write nan, and a 
   for (const auto& row : rows) {
     const double t = row[0];
     const bool alive0 = row[1] < 25; // removed at the end of step 25
-    for (std::size_t c = 2; c < 8; ++c) CHECK(std::isnan(row[c]) == !alive0);
+    for (std::size_t c = 2; c < 8; ++c)
+      CHECK(std::isnan(row[c]) == !alive0);
     if (alive0) {
       CHECK(row[2] == grain::test::approx(t).epsilon(1e-12).scale(1e-12));
       CHECK(row[5] == grain::test::approx(t).epsilon(1e-12).scale(1e-12));
     }
     const bool alive1 = row[1] >= 15; // created at the end of step 15
-    for (std::size_t c = 8; c < 14; ++c) CHECK(std::isnan(row[c]) == !alive1);
+    for (std::size_t c = 8; c < 14; ++c)
+      CHECK(std::isnan(row[c]) == !alive1);
     if (alive1) {
       if (first_seen < 0) {
         first_seen = t;
         y_first = row[9];
       }
       CHECK(row[8] == 1.0);
-      CHECK(row[9] == grain::test::approx(y_first + 2 * (t - first_seen)).epsilon(1e-12).scale(1e-12));
+      CHECK(row[9] ==
+            grain::test::approx(y_first + 2 * (t - first_seen)).epsilon(1e-12).scale(1e-12));
       CHECK(row[12] == grain::test::approx(2 * (t - first_seen)).epsilon(1e-12).scale(1e-12));
     }
   }
@@ -294,7 +303,7 @@ TEST_CASE("io::particle_history and io::group_history reject unknown or repeated
   Sim3 sim;
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .id = 3});
-  const auto dir = scratch("errors");
+  const auto dir = scratch("grain_csv_test_errors");
   const auto path = (dir / "p.csv").string();
   CHECK_THROWS_AS(io::particle_columns({3, 3}, io::position), InputError);
   CHECK_THROWS_AS(io::particle_columns({}, io::position), InputError);
@@ -317,17 +326,19 @@ TEST_CASE("io::group_history: count and means over the group's active particles"
   Sim3 sim(p); // no gravity
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e5});
   for (int k = 0; k < 4; ++k)
-    sim.add_particle({.position = {double(k), 0, 0}, .radius = 1e-3 * (k + 1), .material = m,
+    sim.add_particle({.position = {double(k), 0, 0},
+                      .radius = 1e-3 * (k + 1),
+                      .material = m,
                       .velocity = {double(k == 3 ? 10 : k + 1), 0, 0},
                       .destruction_time = k == 2 ? 25e-4 : std::numeric_limits<double>::infinity(),
                       .id = k});
   sim.add_group("hot", {0, 1, 2});
   sim.add_group("solo", {2});
-  const auto dir = scratch("group");
+  const auto dir = scratch("grain_csv_test_group");
   const auto path = dir / "g.csv";
   sim.steps(40, io::every_steps(10, io::csv(path.string(),
-                                            io::group_columns("hot", io::velocity,
-                                                              io::displacement, io::radius),
+                                            io::group_columns("hot", io::velocity, io::displacement,
+                                                              io::radius),
                                             io::group_columns("solo", io::speed),
                                             io::group_columns("all", io::mass))));
   const auto lines = lines_of(path);
@@ -363,7 +374,7 @@ TEST_CASE("io::history with contact-force, lifecycle and dissipated-energy colum
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m});
   sim.add_particle({.position = {0, 0, 0.005 - 5e-7}, .radius = 0.005, .material = m});
   sim.add_particle({.position = {1, 0, 1}, .radius = 0.005, .material = m, .creation_time = 1.0});
-  const auto dir = scratch("extras");
+  const auto dir = scratch("grain_csv_test_extras");
   const auto path = dir / "h.csv";
   sim.steps(200, io::every_steps(50, io::history(path.string(), io::contact_force_columns(),
                                                  io::contact_force_columns(io::Contacts::particles),
@@ -408,7 +419,7 @@ struct WithDissipation {
 } // namespace
 
 TEST_CASE("io::csv dissipated_energy_column: present when the simulation has dissipated_energy()") {
-  const auto dir = scratch("dissipation");
+  const auto dir = scratch("grain_csv_test_dissipation");
   const auto path = dir / "d.csv";
   auto w = io::csv(path.string(), io::dissipated_energy_column());
   WithDissipation s;
@@ -423,24 +434,34 @@ TEST_CASE("io::csv dissipated_energy_column: present when the simulation has dis
 
 TEST_CASE("io::history heat-flow columns and thermal particle columns match the contacts' heat "
           "rates") {
-  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                              conduction::BatchelorOBrien>;
+  using Contact =
+      Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
   using Sim = Simulation<Sphere, search::AllPairs, Contact>;
   Sim::Params p;
   p.gravity = {0, 0, -9.81};
   Sim sim(p);
-  const auto m = sim.add_material({.name = "steel", .density = 7800, .young = 2e9, .poisson = 0.3,
-                                   .conductivity = 40, .heat_capacity = 500});
+  const auto m = sim.add_material({.name = "steel",
+                                   .density = 7800,
+                                   .young = 2e9,
+                                   .poisson = 0.3,
+                                   .conductivity = 40,
+                                   .heat_capacity = 500});
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m, .temperature = 400.0});
-  sim.add_particle({.position = {0, 0, 0.005 - 5e-7}, .radius = 0.005, .material = m,
-                    .temperature = 300, .id = 0});
-  sim.add_particle({.position = {0, 0, 0.015 - 1.5e-6}, .radius = 0.005, .material = m,
-                    .temperature = 350, .id = 1});
-  const auto dir = scratch("heat");
+  sim.add_particle({.position = {0, 0, 0.005 - 5e-7},
+                    .radius = 0.005,
+                    .material = m,
+                    .temperature = 300,
+                    .id = 0});
+  sim.add_particle({.position = {0, 0, 0.015 - 1.5e-6},
+                    .radius = 0.005,
+                    .material = m,
+                    .temperature = 350,
+                    .id = 1});
+  const auto dir = scratch("grain_csv_test_heat");
   const auto path = dir / "h.csv";
-  sim.steps(100, io::every_steps(50, io::history(path.string(), io::heat_flow_columns(),
-                                                 io::particle_columns({1}, io::temperature,
-                                                                      io::heat_rate))));
+  sim.steps(100, io::every_steps(
+                     50, io::history(path.string(), io::heat_flow_columns(),
+                                     io::particle_columns({1}, io::temperature, io::heat_rate))));
   const auto lines = lines_of(path);
   REQUIRE(lines.size() == 4);
   CHECK(lines[0] == "time [s],step,particles,contacts_pp,contacts_pw,kinetic_energy [J],"
@@ -476,7 +497,7 @@ TEST_CASE("csv rows are flushed: the file is valid CSV up to the last row at any
   Sim3 sim(p);
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .id = 4});
-  const auto dir = scratch("flushed");
+  const auto dir = scratch("grain_csv_test_flushed");
   const auto path = dir / "f.csv";
   std::size_t rows_written = 0;
   struct Stop {};
@@ -493,15 +514,16 @@ TEST_CASE("csv rows are flushed: the file is valid CSV up to the last row at any
     for (std::size_t k = 1; k < lines.size(); ++k) {
       const auto cells = split(lines[k]);
       REQUIRE(cells.size() == width);
-      for (const auto& c : cells) CHECK_NOTHROW((void)std::stod(c));
+      for (const auto& c : cells)
+        CHECK_NOTHROW((void)std::stod(c));
     }
     CHECK(std::stol(split(lines.back())[1]) == s.step_count());
     if (s.step_count() == 30) throw Stop{}; // the run stops here
   };
-  CHECK_THROWS_AS(sim.steps(100, io::every_steps(10, io::history(path.string(),
-                                                                 io::particle_columns(
-                                                                     {4}, io::position,
-                                                                     io::velocity)),
+  CHECK_THROWS_AS(sim.steps(100, io::every_steps(10,
+                                                 io::history(path.string(),
+                                                             io::particle_columns({4}, io::position,
+                                                                                  io::velocity)),
                                                  probe)),
                   Stop);
   const auto lines = lines_of(path);
@@ -516,11 +538,12 @@ TEST_CASE("csv with io::every_steps: rows at the start, every n steps and at the
   Sim3 sim;
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
   sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m});
-  const auto dir = scratch("steps");
+  const auto dir = scratch("grain_csv_test_steps");
   auto steps_in = [](const std::filesystem::path& f) {
     std::vector<long> s;
     const auto lines = lines_of(f);
-    for (std::size_t k = 1; k < lines.size(); ++k) s.push_back(std::stol(split(lines[k])[1]));
+    for (std::size_t k = 1; k < lines.size(); ++k)
+      s.push_back(std::stol(split(lines[k])[1]));
     return s;
   };
   const auto a = dir / "a.csv", b = dir / "b.csv", c = dir / "c.csv";

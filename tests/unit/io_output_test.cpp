@@ -1,6 +1,8 @@
 // Output helpers over long runs, failing files and restarts: io::every keeps to its time grid,
 // writers report a write that did not reach the file (a failed checkpoint keeps the previous
 // one), and writers resumed after a checkpoint leave the files of an uninterrupted run.
+#include "../errors.hpp"
+#include "../support/csv_files.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -24,12 +26,10 @@ namespace {
 
 using Sim3 = Simulation<Sphere, search::AllPairs, Interaction<normal::Hertz<>>>;
 
-std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "grain_io_output_test" / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using grain::test::error_of;
+using grain::test::Folder;
+using grain::test::has;
+using grain::test::scratch;
 
 std::string file_text(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -65,21 +65,6 @@ private:
   void (*previous_)(int) = SIG_DFL;
   bool active_ = false;
 };
-
-/// The message of the std::runtime_error f() throws ("" if none).
-template <class F>
-std::string runtime_error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-bool has(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
 
 /// Five spheres dropped onto a floor: contacts, a wall, a state that changes every step.
 Sim3 pile() {
@@ -131,19 +116,19 @@ TEST_CASE("a CSV history, an io::print file and a VTK series that cannot be writ
   }
   Sim3 sim = pile();
   // opening the device succeeds; the header is lost at its flush
-  const std::string csv = runtime_error_of(
+  const std::string csv = error_of<std::runtime_error>(
       [&] { sim.run(1e-4, io::every(1e-5, io::history(full_device, io::lifecycle_columns()))); });
   CHECK(has(csv, "grain::io::csv"));
   CHECK(has(csv, full_device));
-  const std::string print = runtime_error_of(
+  const std::string print = error_of<std::runtime_error>(
       [&] { sim.run(1e-4, io::every(1e-5, io::print(std::string(full_device)))); });
   CHECK(has(print, "grain::io::print"));
   CHECK(has(print, full_device));
   // the frames are written; the series file that lists them is not
-  const auto dir = scratch("series");
+  const auto dir = scratch("grain_io_output_test/series", Folder::empty);
   std::filesystem::create_symlink(full_device, dir / "bed_particles.vtk.series");
-  const std::string series =
-      runtime_error_of([&] { sim.run(1e-4, io::every(1e-5, io::vtk((dir / "bed").string()))); });
+  const std::string series = error_of<std::runtime_error>(
+      [&] { sim.run(1e-4, io::every(1e-5, io::vtk((dir / "bed").string()))); });
   CHECK(has(series, "grain::io::vtk"));
   CHECK(has(series, "bed_particles.vtk.series"));
   CHECK(std::filesystem::exists(dir / "bed_particles_000000.vtk"));
@@ -152,7 +137,7 @@ TEST_CASE("a CSV history, an io::print file and a VTK series that cannot be writ
 
 TEST_CASE("a CSV row that does not reach the file throws") {
   Sim3 sim = pile();
-  const auto dir = scratch("rows");
+  const auto dir = scratch("grain_io_output_test/rows", Folder::empty);
   const auto path = dir / "h.csv";
   auto out = io::every_steps(1, io::history(path.string(), io::lifecycle_columns()));
   sim.steps(4, out); // header and five rows
@@ -162,7 +147,7 @@ TEST_CASE("a CSV row that does not reach the file throws") {
   {
     FileSizeLimit limit(size + 2 * row); // room for two more rows, not for 50
     REQUIRE(limit.active());
-    error = runtime_error_of([&] { sim.steps(50, out); });
+    error = error_of<std::runtime_error>([&] { sim.steps(50, out); });
   }
   CHECK(has(error, "grain::io::csv: cannot write '" + path.string() + "'"));
   CHECK(std::filesystem::file_size(path) <= size + 2 * row);
@@ -170,7 +155,7 @@ TEST_CASE("a CSV row that does not reach the file throws") {
 }
 
 TEST_CASE("checkpoint: a save that fails keeps the previous checkpoint and says why") {
-  const auto dir = scratch("checkpoint");
+  const auto dir = scratch("grain_io_output_test/checkpoint", Folder::empty);
   const std::string path = (dir / "run.ckpt").string();
   Sim3 sim = pile();
   sim.run(2e-3);
@@ -184,7 +169,7 @@ TEST_CASE("checkpoint: a save that fails keeps the previous checkpoint and says 
   {
     FileSizeLimit limit(size - 1);
     REQUIRE(limit.active());
-    error = runtime_error_of([&] { io::save_checkpoint(sim, path); });
+    error = error_of<std::runtime_error>([&] { io::save_checkpoint(sim, path); });
   }
   CHECK(has(error, "grain::io::save_checkpoint: cannot write '" + path + ".tmp'"));
   CHECK(has(error, "'" + path + "' is left as it was"));
@@ -205,7 +190,8 @@ TEST_CASE("checkpoint: a save that fails keeps the previous checkpoint and says 
 // ------------------------------------------------------------------ restart
 TEST_CASE("writers resumed after a checkpoint leave the files of an uninterrupted run") {
   const double interval = 2e-3, end = 2e-2;
-  const auto whole = scratch("whole"), parts = scratch("parts");
+  const auto whole = scratch("grain_io_output_test/whole", Folder::empty),
+             parts = scratch("grain_io_output_test/parts", Folder::empty);
   const io::VtkOptions vtk{.plane_size = 0.02, .contacts = true};
   auto files_in = [](const std::filesystem::path& dir) {
     std::set<std::string> names;
@@ -250,7 +236,7 @@ TEST_CASE("writers resumed after a checkpoint leave the files of an uninterrupte
 }
 
 TEST_CASE("a resumed CSV writer keeps the file only if its columns are the same") {
-  const auto dir = scratch("columns");
+  const auto dir = scratch("grain_io_output_test/columns", Folder::empty);
   const auto path = dir / "h.csv";
   Sim3 sim = pile();
   sim.run(1e-4, io::every(2e-5, io::history(path.string())));

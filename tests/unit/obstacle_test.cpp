@@ -16,6 +16,8 @@
 
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/materials.hpp"
+#include "../support/meshes.hpp"
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
@@ -37,41 +39,12 @@ namespace {
 using Contact = Interaction<normal::Hertz<>, tangent::None>;
 using Sim = Simulation<Sphere, search::AllPairs, Contact>;
 
-Material material() {
-  Material m;
-  m.density = 2500.0;
-  m.young = 1e7;
-  m.restitution = 0.7;
-  m.friction = 0.0;
-  return m;
-}
+using grain::test::box;
+using grain::test::material; // restitution 0.7 in all cases here
+using grain::test::moved;
+using grain::test::square2;
+using grain::test::square8;
 
-/// The unit square [0, 1]^2 at z = 0 in two triangles (diagonal (0, 0)-(1, 1)).
-walls::TriangleMesh square2() {
-  return {{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {{0, 1, 2}, {0, 2, 3}}};
-}
-/// The unit square in eight triangles that all meet at the centre (vertex 4): a 3 x 3 grid of
-/// vertices, each quarter split by the diagonal through the centre. Vertices 1, 3, 5, 7 are the
-/// midpoints of the sides, where two boundary edges go on in a straight line.
-walls::TriangleMesh square8() {
-  walls::TriangleMesh m;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i)
-      m.vertices.push_back(Vec3(0.5 * i, 0.5 * j, 0));
-  m.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 4}, {2, 5, 4},
-                 {3, 4, 6}, {4, 7, 6}, {4, 5, 8}, {4, 8, 7}};
-  return m;
-}
-/// The box [lo, hi], each side split into two triangles.
-walls::TriangleMesh box(const Vec3& lo, const Vec3& hi) {
-  walls::TriangleMesh m;
-  for (int k = 0; k < 8; ++k)
-    m.vertices.push_back(
-        Vec3(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z()));
-  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
-                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return m;
-}
 /// A height field over [0, 1]^2: n x n cells with random heights in [-0.1, 0.1] (convex,
 /// concave and saddle vertices and folds), alternating diagonals.
 walls::TriangleMesh terrain(int n, unsigned seed) {
@@ -94,12 +67,6 @@ walls::TriangleMesh terrain(int n, unsigned seed) {
     }
   return m;
 }
-/// The mesh turned by R and shifted by s.
-walls::TriangleMesh moved(walls::TriangleMesh m, const Eigen::Matrix3d& R, const Vec3& s) {
-  for (auto& x : m.vertices)
-    x = R * x + s;
-  return m;
-}
 Eigen::Matrix3d some_rotation() {
   return Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
 }
@@ -109,7 +76,7 @@ struct Probe {
   Sim sim;
   Obstacle ob;
   explicit Probe(const walls::TriangleMesh& m, const Vec3& reference = Vec3(0.3, 0.2, 0.1)) {
-    const auto k = sim.add_material(material());
+    const auto k = sim.add_material(material(0.7));
     ob = add_obstacle(sim, m, {.name = "probe", .material = k, .reference_point = reference});
   }
 };
@@ -459,7 +426,7 @@ TEST_CASE("obstacle: corners follow the rotation by the integral of the angular 
     Sim::Params prm;
     prm.time_step = dt;
     Sim sim(prm);
-    const auto k = sim.add_material(material());
+    const auto k = sim.add_material(material(0.7));
     ob = add_obstacle(sim, m,
                       {.name = "spinner",
                        .material = k,
@@ -528,7 +495,7 @@ TEST_CASE("obstacle: corners follow the rotation by the integral of the angular 
 
 TEST_CASE("obstacle input errors name the obstacle, the value and the valid range") {
   Sim sim;
-  const auto k = sim.add_material(material());
+  const auto k = sim.add_material(material(0.7));
   const ObstacleOptions o{.name = "hopper", .material = k};
   using test::error_of;
   using test::has;
@@ -602,7 +569,7 @@ TEST_CASE("obstacle input errors name the obstacle, the value and the valid rang
   CHECK(sim.walls().empty());
 
   // per-triangle materials: triangle k (wall first_wall + k) gets materials[k]
-  const auto k2 = sim.add_material(material());
+  const auto k2 = sim.add_material(material(0.7));
   const auto ob =
       add_obstacle(sim, square2(), {.name = "two", .material = k, .materials = {k2, k}});
   CHECK(sim.walls()[ob.wall(0)].options.material == k2);
@@ -618,7 +585,7 @@ TEST_CASE("obstacle from a list of triangles: equal corners become shared vertic
   CHECK(m.triangles[1][0] == 0);
   CHECK(m.triangles[1][1] == 2);
   Sim sim;
-  const auto k = sim.add_material(material());
+  const auto k = sim.add_material(material(0.7));
   const auto ob = add_obstacle(sim, tris, {.name = "sheet", .material = k});
   CHECK(ob.count == 2);
   CHECK(ob.walls() == std::vector<std::uint32_t>{0, 1});
@@ -636,7 +603,7 @@ TEST_CASE("obstacle: a checkpoint keeps the pose and the mesh features") {
     prm.time_step = 1e-4;
     prm.gravity = Vec3(0, 0, -9.81);
     Sim sim(prm);
-    const auto k = sim.add_material(material());
+    const auto k = sim.add_material(material(0.7));
     add_obstacle(sim, square8(),
                  {.name = "tray",
                   .material = k,

@@ -1,12 +1,12 @@
 // Console output (io/console.hpp): io::print's aligned text, the end-of-run summary with the
 // particle lifecycle, and the progress line of runs with and without an end time.
-#include <doctest/doctest.h>
 #include "../approx.hpp"
+#include "../support/csv_files.hpp"
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -21,13 +21,9 @@ using Sim3 = Simulation<Sphere, search::AllPairs, Interaction<normal::Hertz<>>>;
 std::vector<std::string> lines_in(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  for (std::string l; std::getline(in, l);)
+    lines.push_back(l);
   return lines;
-}
-
-std::string file_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Everything written to a temporary FILE*.
@@ -36,14 +32,16 @@ std::string read_back(std::FILE* f) {
   std::rewind(f);
   std::string text;
   char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) text.append(buf, n);
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;)
+    text.append(buf, n);
   return text;
 }
 
 std::vector<std::string> words(const std::string& line) {
   std::vector<std::string> w;
   std::istringstream in(line);
-  for (std::string s; in >> s;) w.push_back(s);
+  for (std::string s; in >> s;)
+    w.push_back(s);
   return w;
 }
 
@@ -54,12 +52,16 @@ Sim3 lifecycle_sim() {
   p.time_step = 1e-4;
   Sim3 sim(p);
   const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e5});
-  sim.add_particle({.position = {0, 0, 0}, .radius = 1e-3, .material = m, .velocity = {1, 0, 0},
-                    .id = 0});
-  sim.add_particle({.position = {1, 0, 0}, .radius = 1e-3, .material = m, .velocity = {0, 2, 0},
-                    .destruction_time = 25e-4, .id = 1});
-  sim.add_particle({.position = {2, 0, 0}, .radius = 1e-3, .material = m, .creation_time = 1.0,
-                    .id = 2});
+  sim.add_particle(
+      {.position = {0, 0, 0}, .radius = 1e-3, .material = m, .velocity = {1, 0, 0}, .id = 0});
+  sim.add_particle({.position = {1, 0, 0},
+                    .radius = 1e-3,
+                    .material = m,
+                    .velocity = {0, 2, 0},
+                    .destruction_time = 25e-4,
+                    .id = 1});
+  sim.add_particle(
+      {.position = {2, 0, 0}, .radius = 1e-3, .material = m, .creation_time = 1.0, .id = 2});
   return sim;
 }
 
@@ -70,19 +72,19 @@ TEST_CASE("io::print to a text file: a header line, then aligned rows with the c
   const auto dir = std::filesystem::temp_directory_path() / "grain_print_test";
   std::filesystem::remove_all(dir);
   const auto path = dir / "print.txt";
-  sim.steps(40, io::every_steps(10, io::print(path.string(),
-                                              io::column("speed_0 [m/s]",
-                                                         [](const Sim3& s) {
-                                                           return s.particles()
-                                                               .velocity[s.index_of(0)]
-                                                               .norm();
-                                                         }),
-                                              io::lifecycle_columns(),
-                                              io::particle_columns({1}, io::position))));
-  const auto lines = lines_in(file_text(path));
+  sim.steps(40,
+            io::every_steps(
+                10, io::print(path.string(),
+                              io::column("speed_0 [m/s]",
+                                         [](const Sim3& s) {
+                                           return s.particles().velocity[s.index_of(0)].norm();
+                                         }),
+                              io::lifecycle_columns(), io::particle_columns({1}, io::position))));
+  const auto lines = grain::test::lines_of(path);
   REQUIRE(lines.size() == 6); // header + steps 0, 10, 20, 30, 40
-  const std::vector<std::string> names = {"time [s]", "step", "speed_0 [m/s]", "active",
-                                          "inactive", "removed", "x_1 [m]", "y_1 [m]", "z_1 [m]"};
+  const std::vector<std::string> names = {"time [s]", "step",     "speed_0 [m/s]",
+                                          "active",   "inactive", "removed",
+                                          "x_1 [m]",  "y_1 [m]",  "z_1 [m]"};
   // every line has the same length and each column ends where its header ends
   std::vector<std::size_t> ends;
   std::size_t from = 0;

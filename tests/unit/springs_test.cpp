@@ -3,6 +3,7 @@
 // friction, rule firing and activation, torsion angles, and input validation.
 #include "../approx.hpp"
 #include "../errors.hpp"
+#include "../support/tables.hpp"
 #include <cmath>
 #include <cstddef>
 #include <doctest/doctest.h>
@@ -27,9 +28,7 @@ constexpr double pi = std::numbers::pi;
 using grain::test::error_of;
 using grain::test::has;
 
-Table linear_table(double k, double range = 10.0) {
-  return Table({-range, range}, {-k * range, k * range});
-}
+using grain::test::linear_table;
 
 /// A spring along x between the origin (point 1) and (s, 0, 0) (point 2), created at s = 0.
 struct Driven {

@@ -6,6 +6,7 @@
 #include <grain/thermal/voronoi.hpp>
 
 #include "../approx.hpp"
+#include "../support/materials.hpp"
 
 #include <cmath>
 #include <map>
@@ -16,10 +17,7 @@ using namespace grain;
 
 namespace {
 
-Material glass() {
-  return {.name = "glass", .density = 2500, .young = 7e10, .poisson = 0.25, .conductivity = 1.0,
-          .heat_capacity = 800};
-}
+using grain::test::glass;
 
 /// Conductances by particle-id pair of a thermal analysis of an n x n (x n) lattice, pitch s.
 template <class Sim>
@@ -50,8 +48,7 @@ std::map<std::pair<std::int64_t, std::int64_t>, double> lattice(Sim& sim, int n,
 
 TEST_CASE("Voronoi A with the power diagram of a square lattice: r_ij = s/2 for every nearest "
           "pair") {
-  using Contact =
-      Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::VoronoiA>;
+  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::VoronoiA>;
   using Sim = Simulation<Disk, search::CellList, Contact, cells::VoronoiDiagram>;
   Sim::Params p;
   p.analysis = Analysis::thermal;
@@ -71,7 +68,8 @@ TEST_CASE("Voronoi A with the power diagram of a square lattice: r_ij = s/2 for 
   for (const auto& [k, H] : h) {
     const int ia = int(k.first % n), ja = int(k.first / n), ib = int(k.second % n),
               jb = int(k.second / n);
-    const bool edge = (ja == jb && (ja == 0 || ja == n - 1)) || (ia == ib && (ia == 0 || ia == n - 1));
+    const bool edge =
+        (ja == jb && (ja == 0 || ja == n - 1)) || (ia == ib && (ia == 0 || ia == n - 1));
     boundary += edge;
     const double rij = edge ? 0.5 * (s / 2 + R) : s / 2;
     CHECK(H == grain::test::approx(conduction::VoronoiA::mono(R, d, a, rij, 0.5, 0.026, {}))
@@ -81,8 +79,7 @@ TEST_CASE("Voronoi A with the power diagram of a square lattice: r_ij = s/2 for 
 }
 
 TEST_CASE("Voronoi B with global and local porosity cell sizes in 3D") {
-  using Contact =
-      Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::VoronoiB>;
+  using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::VoronoiB>;
   const double R = 1e-3, delta = 2e-7, s = 2 * R - delta;
   const double a = std::sqrt(0.5 * R * delta);
   {
@@ -106,7 +103,8 @@ TEST_CASE("Voronoi B with global and local porosity cell sizes in 3D") {
     const double d = 2 * std::sqrt(R * R - a * a);
     const double expected = conduction::VoronoiB::mono(R, d, a, rij, 0.5, 0.026, {});
     CHECK(h.size() == 3 * 4 * 4 * 3);
-    for (const auto& [k, H] : h) CHECK(H == grain::test::approx(expected).epsilon(1e-9));
+    for (const auto& [k, H] : h)
+      CHECK(H == grain::test::approx(expected).epsilon(1e-9));
   }
   {
     // local porosity: every pair conducts, with r_ij from the mean of the two local porosities
@@ -118,6 +116,7 @@ TEST_CASE("Voronoi B with global and local porosity cell sizes in 3D") {
     Sim sim(p);
     const auto h = lattice(sim, 3, R, s);
     CHECK(h.size() == 3 * 3 * 3 * 2);
-    for (const auto& [k, H] : h) CHECK(H > 0.0);
+    for (const auto& [k, H] : h)
+      CHECK(H > 0.0);
   }
 }
