@@ -1,12 +1,19 @@
 #pragma once
 /// \file error.hpp
-/// Errors raised for bad input. Every message names the object, the value and the valid range.
+/// Errors raised for bad input. Every message names the object, the value and the valid range:
+///
+///   <object>: <name> = <value> is invalid; valid range: <range>
+///
+/// The checks `grain::require`, `require_positive`, `require_non_negative`, `require_finite` and
+/// `require_in` throw `InputError` with that message; a model's `validate` uses them for its
+/// parameters (see docs/adding_a_model.md).
 
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace grain {
 
@@ -42,36 +49,75 @@ std::string vector_text(const Vec& v) {
   return out;
 }
 
+} // namespace detail
+
+/// Throws `InputError("<object>: <name> = <value> is invalid; valid range: <range>")` unless
+/// `ok`. `value` is written with 10 significant digits (any type that `operator<<` writes).
+template <class T>
+void require(bool ok, std::string_view object, std::string_view name, const T& value,
+             std::string_view range) {
+  if (!ok)
+    throw InputError(std::string(object) + ": " + std::string(name) + " = " +
+                     detail::to_text(value) + " is invalid; valid range: " + std::string(range));
+}
+
+/// Requires a finite value strictly above zero (valid range "(0, inf)").
+inline void require_positive(std::string_view object, std::string_view name, double value) {
+  require(std::isfinite(value) && value > 0.0, object, name, value, "(0, inf)");
+}
+/// Requires a finite value at or above zero (valid range "[0, inf)").
+inline void require_non_negative(std::string_view object, std::string_view name, double value) {
+  require(std::isfinite(value) && value >= 0.0, object, name, value, "[0, inf)");
+}
+/// Requires a finite value (valid range "a finite number").
+inline void require_finite(std::string_view object, std::string_view name, double value) {
+  require(std::isfinite(value), object, name, value, "a finite number");
+}
+/// Requires lo <= value <= hi; `range` is the text of the message (e.g. "[0, 1]").
+inline void require_in(std::string_view object, std::string_view name, double value, double lo,
+                       double hi, std::string_view range) {
+  require(std::isfinite(value) && value >= lo && value <= hi, object, name, value, range);
+}
+/// Requires lo <= value <= hi; the message gives the range as "[lo, hi]".
+inline void require_in(std::string_view object, std::string_view name, double value, double lo,
+                       double hi) {
+  if (!(std::isfinite(value) && value >= lo && value <= hi))
+    require_in(object, name, value, lo, hi,
+               "[" + detail::to_text(lo) + ", " + detail::to_text(hi) + "]");
+}
+
+namespace detail {
+
+// The library's own checks: the public ones above, with the object as a std::string.
+
 /// Throws `InputError("<object>: <name> = <value> is invalid; valid range: <range>")` unless `ok`.
 template <class T>
 void require(bool ok, const std::string& object, const char* name, const T& value,
              const char* range) {
-  if (!ok)
-    throw InputError(object + ": " + name + " = " + to_text(value) +
-                     " is invalid; valid range: " + range);
+  grain::require(ok, object, name, value, range);
 }
 template <class T>
 void require(bool ok, const std::string& object, const char* name, const T& value,
              const std::string& range) {
-  require(ok, object, name, value, range.c_str());
+  grain::require(ok, object, name, value, range);
 }
 
 /// Requires a finite value strictly above zero.
 inline void require_positive(const std::string& object, const char* name, double v) {
-  require(std::isfinite(v) && v > 0.0, object, name, v, "(0, inf)");
+  grain::require_positive(object, name, v);
 }
 /// Requires a finite value at or above zero.
 inline void require_non_negative(const std::string& object, const char* name, double v) {
-  require(std::isfinite(v) && v >= 0.0, object, name, v, "[0, inf)");
+  grain::require_non_negative(object, name, v);
 }
 /// Requires a finite value.
 inline void require_finite(const std::string& object, const char* name, double v) {
-  require(std::isfinite(v), object, name, v, "a finite number");
+  grain::require_finite(object, name, v);
 }
 /// Requires lo <= v <= hi.
 inline void require_in(const std::string& object, const char* name, double v, double lo, double hi,
                        const char* range) {
-  require(std::isfinite(v) && v >= lo && v <= hi, object, name, v, range);
+  grain::require_in(object, name, v, lo, hi, range);
 }
 
 } // namespace detail
