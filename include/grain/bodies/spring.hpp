@@ -122,10 +122,12 @@ inline constexpr int activated = -2; ///< activated by an unspring rule
 inline constexpr int inactive = -1;  ///< dormant or undone: no force
 } // namespace spring_code
 
-/// Parameters of one translational spring. `spring` is required; the rest is optional.
+/// Parameters of one translational spring. `spring` is required; the rest is optional. Every
+/// member has a default, so `SpringParams p;` compiles; the default `spring` is the empty table,
+/// which `validate` rejects ("the force-stroke table f(s) must be given").
 struct SpringParams {
-  /// Force-stroke table f(s) [m -> N] (the loading curve when `unload` is given).
-  Table spring;
+  /// Force-stroke table f(s) [m -> N] (the loading curve when `unload` is given); required.
+  Table spring{};
   /// Dashpot force-velocity table f_d(v) [m/s -> N]; excludes `damping_ratio` > 0.
   std::optional<Table> dashpot{};
   /// Critical damping ratio xi >= 0 [-]: f_d = 2 xi sqrt(k m) v.
@@ -306,6 +308,13 @@ inline void validate(const SpringParams& p) {
   using grain::detail::require;
   using grain::detail::to_text;
   const std::string& obj = p.name;
+  grain::detail::require_given(p.spring, obj, "spring", "the force-stroke table f(s)");
+  if (p.dashpot)
+    grain::detail::require_given(*p.dashpot, obj, "dashpot",
+                                 "a given dashpot table f_d(v) (or leave it absent)");
+  if (p.unload)
+    grain::detail::require_given(*p.unload, obj, "unload",
+                                 "a given unloading curve U(s) (or leave it absent)");
   require(std::isfinite(p.damping_ratio) && p.damping_ratio >= 0.0, obj, "damping_ratio",
           p.damping_ratio, "[0, inf) (a critical damping ratio)");
   if (p.dashpot && p.damping_ratio > 0.0)
