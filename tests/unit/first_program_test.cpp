@@ -1,5 +1,6 @@
 // What a first grain program needs: parameter structs with tables that default-construct (and
-// reject a table that was never given), and a spring's rest length.
+// reject a table that was never given), a spring's rest length, and a body's angular velocity in
+// its own frame.
 #include "../approx.hpp"
 #include "../errors.hpp"
 #include <grain/bodies/rigid_body.hpp>
@@ -219,4 +220,46 @@ TEST_CASE("first program: rest_length is checked") {
   CHECK(has(error_of([&] { gb::validate(p); }),
             "SPRING: rest_length = 0.1 is invalid; valid range: none for the point_to_plane "
             "geometry"));
+}
+
+// ------------------------------------------------------------------ angular velocity, body frame
+
+TEST_CASE("first program: local_omega gives the angular velocity in the body's own frame") {
+  // a body whose inertia is not diagonal in its reference frame (principal axes != reference
+  // axes), turned by a known rotation; spatial omega = Lambda Omega for a chosen Omega
+  const Eigen::Matrix3d lambda = (Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, 2.0).normalized()) *
+                                  Eigen::AngleAxisd(-1.1, Vec3::UnitZ()))
+                                     .toRotationMatrix();
+  const Vec3 omega_body(0.3, -2.0, 5.0);
+  gb::RigidBodies bodies;
+  gb::RigidBody b;
+  b.inertia = gb::inertia_tensor(2.0, 3.0, 4.0, 0.3, -0.2, 0.1);
+  b.rotation = lambda;
+  b.omega = lambda * omega_body;
+  const std::size_t i = bodies.add(b);
+  const Vec3 got = gb::local_omega(bodies, i);
+  CHECK((got - omega_body).norm() <= 1e-14 * omega_body.norm());
+  CHECK((gb::rotation(bodies, i) * got - bodies.omega[i]).norm() <= 1e-14 * omega_body.norm());
+
+  // rotation about a principal axis stays steady: omega and Omega are constant, and the body
+  // turns by w t about the world axis Lambda0 e_z (dLambda/dt = Lambda [Omega]x)
+  gb::RigidBody spin;
+  spin.inertia = Eigen::Vector3d(1.0, 2.0, 3.0).asDiagonal();
+  spin.rotation = lambda;
+  const double w = 5.0, t = 0.4;
+  spin.omega = lambda * Vec3(0.0, 0.0, w);
+  const std::size_t j = bodies.add(spin);
+  gb::clear_forces(bodies);
+  for (int step = 0; step < 400; ++step)
+    gb::step(bodies, t / 400.0, [](gb::RigidBodies&) {});
+  CHECK((gb::local_omega(bodies, j) - Vec3(0.0, 0.0, w)).norm() <= 1e-12 * w);
+  const Eigen::Matrix3d expected =
+      Eigen::AngleAxisd(w * t, lambda * Vec3::UnitZ()).toRotationMatrix() * lambda;
+  CHECK((gb::rotation(bodies, j) - expected).cwiseAbs().maxCoeff() <= 1e-12);
+
+  // the particles of a 3D simulation: orientation R (body axes -> world) and spatial omega
+  grain::ParticleArrays<3> p;
+  p.orientation.push_back(Eigen::Quaterniond(lambda));
+  p.omega.push_back(lambda * omega_body);
+  CHECK((gb::local_omega(p, 0) - omega_body).norm() <= 1e-14 * omega_body.norm());
 }
