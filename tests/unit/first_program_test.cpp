@@ -1,6 +1,6 @@
 // What a first grain program needs: parameter structs with tables that default-construct (and
-// reject a table that was never given), a spring's rest length, and a body's angular velocity in
-// its own frame.
+// reject a table that was never given), a spring's rest length, a body's angular velocity in its
+// own frame, and the Hertz contact time against a simulated head-on impact.
 #include "../approx.hpp"
 #include "../errors.hpp"
 #include <grain/bodies/rigid_body.hpp>
@@ -262,4 +262,102 @@ TEST_CASE("first program: local_omega gives the angular velocity in the body's o
   p.orientation.push_back(Eigen::Quaterniond(lambda));
   p.omega.push_back(lambda * omega_body);
   CHECK((gb::local_omega(p, 0) - omega_body).norm() <= 1e-14 * omega_body.norm());
+}
+
+// ------------------------------------------------------------------ Hertz contact time
+
+TEST_CASE("first program: the Hertz contact-time constant is 2 I (15/16)^(2/5)") {
+  // I = int_0^1 dx / sqrt(1 - x^(5/2)) = sqrt(pi) Gamma(7/5) / Gamma(9/10)
+  const double I = std::sqrt(pi) * std::tgamma(1.4) / std::tgamma(0.9);
+  const double c_t = 2.0 * I * std::pow(15.0 / 16.0, 0.4);
+  // E* = 1, R* = 1, m* = 1, v = 1: t_c = c_t
+  CHECK(grain::normal::hertz_contact_time(1.0, 1.0, 1.0, 1.0) == approx(c_t).epsilon(1e-14));
+  // Johnson (1985): 2.94 delta_max / v and 2.87 (m*^2 / (R* E*^2 v))^(1/5), to their 3 digits
+  CHECK(std::abs(2.0 * I - 2.94) <= 5e-3);
+  CHECK(std::abs(c_t - 2.87) <= 5e-3);
+  // the same as the closed form the linear models use
+  grain::PairProperties pair;
+  pair.young_eff = 7e10;
+  CHECK(grain::normal::hertz_contact_time(7e10, 1e-3, 2e-5, 0.7) ==
+        approx(grain::normal::hertz_equivalent::hertz_contact_time(pair, 1e-3, 2e-5, 0.7))
+            .epsilon(1e-15));
+  CHECK(has(error_of([] { grain::normal::hertz_contact_time(7e10, 1e-3, 2e-5, 0.0); }),
+            "normal::hertz_contact_time: v = 0 is invalid; valid range: (0, inf) m/s"));
+  CHECK(has(error_of([] { grain::normal::hertz_contact_time(-1.0, 1e-3, 2e-5, 1.0); }),
+            "normal::hertz_contact_time: young_eff = -1 is invalid; valid range: (0, inf) Pa"));
+}
+
+namespace {
+
+using Undamped = grain::Interaction<grain::normal::Hertz<>, grain::tangent::None>;
+using ImpactSim = grain::Simulation<grain::Sphere, grain::search::AllPairs, Undamped>;
+
+grain::Material elastic(double young, double poisson, double density) {
+  grain::Material m;
+  m.young = young;
+  m.poisson = poisson;
+  m.density = density;
+  m.restitution = 1.0; // Tsuji alpha = 0: no damping
+  m.friction = 0.0;
+  return m;
+}
+
+/// Head-on impact of a glass sphere (R = 1 mm) and a steel sphere (R = 1.5 mm) at the relative
+/// normal velocity v; returns the simulated contact duration and the predicted t_c.
+std::pair<double, double> impact_duration(double v) {
+  const grain::Material glass = elastic(7.0e10, 0.22, 2500.0);
+  const grain::Material steel = elastic(2.1e11, 0.29, 7850.0);
+  const double r1 = 1.0e-3, r2 = 1.5e-3;
+  const double m1 = glass.density * 4.0 / 3.0 * pi * r1 * r1 * r1;
+  const double m2 = steel.density * 4.0 / 3.0 * pi * r2 * r2 * r2;
+  const double e_eff = 1.0 / ((1.0 - glass.poisson * glass.poisson) / glass.young +
+                              (1.0 - steel.poisson * steel.poisson) / steel.young);
+  const double r_eff = r1 * r2 / (r1 + r2), m_eff = m1 * m2 / (m1 + m2);
+  const double t_c = grain::normal::hertz_contact_time(e_eff, r_eff, m_eff, v);
+
+  ImpactSim::Params params;
+  params.time_step = t_c / 200.0; // about 200 steps in contact
+  ImpactSim sim(params);
+  const auto mg = sim.add_material(glass);
+  const auto ms = sim.add_material(steel);
+  grain::ParticleSpec<3> a, b;
+  a.radius = r1;
+  a.material = mg;
+  a.velocity = Vec3(0.5 * v, 0.0, 0.0);
+  b.position = Vec3(r1 + r2 + 3.37 * v * params.time_step, 0.0, 0.0); // touch after 3.37 steps
+  b.radius = r2;
+  b.material = ms;
+  b.velocity = Vec3(-0.5 * v, 0.0, 0.0);
+  const auto ia = sim.add_particle(a);
+  const auto ib = sim.add_particle(b);
+  const auto overlap = [&] {
+    const auto& q = sim.particles();
+    return r1 + r2 - (q.position[sim.index_of(ib)] - q.position[sim.index_of(ia)]).norm();
+  };
+  // contact from the zero crossing of the overlap before the first overlapping sample to the one
+  // after the last, each interpolated linearly between the two samples around it
+  double t_prev = sim.time(), d_prev = overlap(), t_on = -1.0, t_off = -1.0;
+  for (int k = 0; k < 1000 && t_off < 0.0; ++k) {
+    sim.step();
+    const double t = sim.time(), d = overlap();
+    if (d > 0.0 && d_prev <= 0.0) t_on = t_prev + (t - t_prev) * (-d_prev) / (d - d_prev);
+    if (d <= 0.0 && d_prev > 0.0) t_off = t_prev + (t - t_prev) * d_prev / (d_prev - d);
+    t_prev = t;
+    d_prev = d;
+  }
+  REQUIRE(t_on >= 0.0);
+  REQUIRE(t_off > t_on);
+  return {t_off - t_on, t_c};
+}
+
+} // namespace
+
+TEST_CASE(
+    "first program: hertz_contact_time is the duration of a simulated undamped Hertz impact") {
+  for (const double v : {0.1, 1.0, 5.0}) {
+    const auto [simulated, predicted] = impact_duration(v);
+    MESSAGE("v = " << v << " m/s: t_c = " << predicted << " s, simulated " << simulated
+                   << " s, relative difference " << simulated / predicted - 1.0);
+    CHECK(simulated == approx(predicted).epsilon(1e-2)); // 1 % (measured: -1.3e-5)
+  }
 }
