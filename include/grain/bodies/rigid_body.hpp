@@ -14,7 +14,8 @@
 /// - *Reference frame* of a body: the frame in which its inertia tensor J_ref was given.
 ///   `rotation(b, i)` (Lambda) maps reference-frame vectors to world vectors; the world inertia
 ///   is Lambda J_ref Lambda^T. Local (material) coordinates X of a point are reference-frame
-///   coordinates relative to the centre of mass: x = c + Lambda X (`to_world`, `to_local`).
+///   coordinates relative to the centre of mass: x = c + Lambda X (`to_world`, `to_local`). The
+///   angular velocity in this frame (the body frame) is Omega = Lambda^T omega (`local_omega`).
 /// - *Principal frame*: the eigenvectors of J_ref. The store integrates the principal frame's
 ///   orientation Q (`orientation`, a unit quaternion, principal -> world) and keeps the constant
 ///   principal -> reference rotation P (`axes`), so Lambda = Q P^T and J_world = Q diag(J) Q^T.
@@ -289,6 +290,22 @@ inline Vec3 to_world(const RigidBodies& b, std::size_t i, const Vec3& local) {
 /// Local coordinates of a world point: Lambda^T (x - c) [m].
 inline Vec3 to_local(const RigidBodies& b, std::size_t i, const Vec3& world) {
   return b.axes[i] * (b.orientation[i].conjugate() * (world - b.position[i]));
+}
+
+/// Angular velocity in the body's own frame [rad/s]: Omega = Lambda^T omega, the components of
+/// the spatial angular velocity omega along the axes of the body's reference frame (the frame of
+/// its inertia tensor J_ref and of its local coordinates; Parmec's referential angular velocity).
+/// omega = Lambda Omega; the time derivative of the orientation is dLambda/dt = Lambda [Omega]x.
+/// For the principal axes use Q^T omega = P^T Omega (`orientation`, `axes`).
+inline Vec3 local_omega(const RigidBodies& b, std::size_t i) {
+  return b.axes[i] * (b.orientation[i].conjugate() * b.omega[i]);
+}
+
+/// The same for particle `i` of a 3D particle store [rad/s]: R^T omega, R the particle's
+/// orientation (`ParticleArrays<3>::orientation`, body axes -> world; for a clump member, the
+/// clump's reference frame).
+inline Vec3 local_omega(const ParticleArrays<3>& p, std::size_t i) {
+  return p.orientation[i].normalized().conjugate() * p.omega[i];
 }
 
 /// Velocity of the material point now at world position x: v + omega x (x - c) [m/s].

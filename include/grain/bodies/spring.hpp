@@ -9,19 +9,34 @@
 ///
 /// ## Geometry, direction and stroke
 ///
-/// Let d = p2 - p1. The unit direction `e` and the stroke `s` are (stroke0 is captured by
-/// `init_spring` from the positions at creation):
+/// Let d = p2 - p1. The unit direction `e` and the stroke `s` are (stroke0 is the rest length,
+/// see below):
 ///
 /// - `point_to_point`: e = d / abs(d) (follower), s = abs(d) - stroke0;
 /// - `constant_direction`: e = c, the given unit direction, s = c . d - stroke0;
 /// - `planar`: e = w / abs(w) with w = d - (c . d) c, s = abs(w) - stroke0;
 /// - `point_to_plane`: e = -n (n: the plane normal, carried by body 2), s = n . (p1 - p2).
 ///
-/// In every geometry s = e . d - stroke0 (stroke0 = 0 for the plane), so s > 0 is extension
+/// The length of the spring is L = e . d (abs(d), c . d or abs(w); for the plane, the signed
+/// distance n . (p1 - p2)), so that in every geometry s = L - stroke0 (stroke0 = 0 for the plane)
+/// and s > 0 is extension
 /// (points moving apart; point 1 on the positive side of the plane) and the stroke rate is
 /// v = e . (v2 - v1). For the plane, p2 is any point of the plane and v2 the velocity of the
 /// material point of body 2 under point 1; the rate neglects the rotation of the normal. If
 /// abs(d) (or abs(w)) is zero the direction is undefined and the spring gives no force.
+///
+/// ## Rest length
+///
+/// stroke0 is the rest (undeformed) length L0 [m], the length at which the stroke is zero and the
+/// force is that of the table at s = 0. As in the Parmec manual, it is the length at creation,
+/// stroke0 = e(0) . (p2(0) - p1(0)), captured by `init_spring` from the positions, unless
+/// `SpringParams::rest_length` gives it: stroke0 = rest_length. A spring created at a length
+/// L(0) other than its rest length starts prestressed, at the stroke s(0) = L(0) - L0 with the
+/// force f(s(0)). The stroke keeps the definition s = e . d - stroke0 with stroke0 given instead
+/// of captured; the force is that of Parmec's spring with the constant stroke offset
+/// L0 - L(0) (f = table(L - L(0) - (L0 - L(0)))), whose stroke would be counted from L(0).
+/// The plane has no rest length: its stroke is the signed distance (rest_length must not be
+/// given); its table is written in that distance.
 ///
 /// ## Force
 ///
@@ -122,10 +137,12 @@ inline constexpr int activated = -2; ///< activated by an unspring rule
 inline constexpr int inactive = -1;  ///< dormant or undone: no force
 } // namespace spring_code
 
-/// Parameters of one translational spring. `spring` is required; the rest is optional.
+/// Parameters of one translational spring. `spring` is required; the rest is optional. Every
+/// member has a default, so `SpringParams p;` compiles; the default `spring` is the empty table,
+/// which `validate` rejects ("the force-stroke table f(s) must be given").
 struct SpringParams {
-  /// Force-stroke table f(s) [m -> N] (the loading curve when `unload` is given).
-  Table spring;
+  /// Force-stroke table f(s) [m -> N] (the loading curve when `unload` is given); required.
+  Table spring{};
   /// Dashpot force-velocity table f_d(v) [m/s -> N]; excludes `damping_ratio` > 0.
   std::optional<Table> dashpot{};
   /// Critical damping ratio xi >= 0 [-]: f_d = 2 xi sqrt(k m) v.
@@ -134,6 +151,10 @@ struct SpringParams {
   /// The constant direction c (constant_direction) or the plane normal of `planar`; need not be
   /// unit, must be non-zero.
   Vec3 direction = Vec3::Zero();
+  /// Rest (undeformed) length L0 [m]: the stroke is s = L - L0 (L = abs(d), c . d or abs(w)).
+  /// Absent (default): the length at creation, as in Parmec. >= 0 for point_to_point and planar,
+  /// any finite value for constant_direction; not for point_to_plane.
+  std::optional<double> rest_length{};
   /// Unloading curve U(s) [m -> N], forces strictly increasing; enables the hysteresis.
   std::optional<Table> unload{};
   /// Compression and tension yield forces [N], fyc <= 0 <= fyt.
@@ -152,7 +173,8 @@ struct SpringParams {
 
 /// Per-spring history, trivially copyable.
 struct SpringState {
-  double stroke0 = 0.0;     ///< e . (p2 - p1) at creation [m] (0 for the plane)
+  double stroke0 = 0.0;     ///< rest length: `rest_length`, or e . (p2 - p1) at creation [m]
+                            ///< (0 for the plane)
   double stroke = 0.0;      ///< stroke at the last evaluation [m]
   double force = 0.0;       ///< elastic force at the last evaluation [N]
   double sigma = 0.0;       ///< shift of the loading curve's argument [m]
@@ -306,6 +328,32 @@ inline void validate(const SpringParams& p) {
   using grain::detail::require;
   using grain::detail::to_text;
   const std::string& obj = p.name;
+  grain::detail::require_given(p.spring, obj, "spring", "the force-stroke table f(s)");
+  if (p.dashpot)
+    grain::detail::require_given(*p.dashpot, obj, "dashpot",
+                                 "a given dashpot table f_d(v) (or leave it absent)");
+  if (p.unload)
+    grain::detail::require_given(*p.unload, obj, "unload",
+                                 "a given unloading curve U(s) (or leave it absent)");
+  if (p.rest_length) {
+    const double l0 = *p.rest_length;
+    switch (p.geometry) {
+    case SpringGeometry::point_to_point:
+    case SpringGeometry::planar:
+      require(std::isfinite(l0) && l0 >= 0.0, obj, "rest_length", l0,
+              "[0, inf) m (the length at which the stroke is zero)");
+      break;
+    case SpringGeometry::constant_direction:
+      require(std::isfinite(l0), obj, "rest_length", l0,
+              "a finite length [m] (the length c . d at which the stroke is zero)");
+      break;
+    case SpringGeometry::point_to_plane:
+      require(false, obj, "rest_length", l0,
+              "none for the point_to_plane geometry (its stroke is the signed distance "
+              "n . (p1 - p2); write the table in that distance)");
+      break;
+    }
+  }
   require(std::isfinite(p.damping_ratio) && p.damping_ratio >= 0.0, obj, "damping_ratio",
           p.damping_ratio, "[0, inf) (a critical damping ratio)");
   if (p.dashpot && p.damping_ratio > 0.0)
@@ -335,8 +383,10 @@ inline void validate(const SpringParams& p) {
   }
 }
 
-/// The stroke0 of the spring's geometry for the positions at creation (0 for the plane).
-inline double initial_stroke(const SpringParams& p, const SpringKinematics& k) {
+namespace detail {
+
+/// The length L = e . (p2 - p1) of the spring's geometry [m] (the plane: n . (p1 - p2)).
+inline double spring_length(const SpringParams& p, const SpringKinematics& k) {
   const Vec3 d = k.p2 - k.p1;
   switch (p.geometry) {
   case SpringGeometry::point_to_point:
@@ -348,13 +398,24 @@ inline double initial_stroke(const SpringParams& p, const SpringKinematics& k) {
     return (d - c.dot(d) * c).norm();
   }
   case SpringGeometry::point_to_plane:
-    return 0.0;
+    return k.normal.normalized().dot(-d);
   }
   return 0.0;
 }
 
+} // namespace detail
+
+/// The stroke0 (rest length) of a spring created with the kinematics `k` [m]: `rest_length` if
+/// given, else the length of the spring's geometry for these positions; 0 for the plane.
+inline double initial_stroke(const SpringParams& p, const SpringKinematics& k) {
+  if (p.geometry == SpringGeometry::point_to_plane) return 0.0;
+  if (p.rest_length) return *p.rest_length;
+  return detail::spring_length(p, k);
+}
+
 /// Validates the parameters and makes the state of a spring created with the kinematics `k0` at
-/// time `t0` [s]: stroke0, the activity, the state code, the starting extremes.
+/// time `t0` [s]: stroke0 (the rest length), the stroke at creation (0 unless `rest_length` is
+/// given, or for the plane), the activity, the state code, the starting extremes.
 inline SpringState init_spring(const SpringParams& p, const SpringKinematics& k0, double t0 = 0.0) {
   validate(p);
   detail::require_finite_vec(p.name, "p1", k0.p1);
@@ -363,8 +424,7 @@ inline SpringState init_spring(const SpringParams& p, const SpringKinematics& k0
   st.stroke0 = initial_stroke(p, k0);
   st.active = !p.inactive;
   st.code = p.inactive ? spring_code::inactive : spring_code::regular;
-  const Vec3 d = k0.p2 - k0.p1;
-  st.stroke = p.geometry == SpringGeometry::point_to_plane ? k0.normal.normalized().dot(-d) : 0.0;
+  st.stroke = detail::spring_length(p, k0) - st.stroke0;
   const double o = p.offset(t0);
   st.u_max = st.u_min = st.stroke - o;
   st.force = p.spring(st.stroke - o);

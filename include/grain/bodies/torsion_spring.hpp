@@ -148,6 +148,12 @@ inline double torsion_torque(const TorsionLaw& law, double a, double rate, doubl
 }
 
 inline void validate_law(const std::string& obj, const char* which, const TorsionLaw& law) {
+  if (law.spring)
+    grain::detail::require_given(*law.spring, obj, std::string(which) + ".spring",
+                                 "a given torque-angle table (or leave it absent)");
+  if (law.dashpot)
+    grain::detail::require_given(*law.dashpot, obj, std::string(which) + ".dashpot",
+                                 "a given torque-rate table (or leave it absent)");
   const std::string name = std::string(which) + ".damping_ratio";
   grain::detail::require(std::isfinite(law.damping_ratio) && law.damping_ratio >= 0.0, obj,
                          name.c_str(), law.damping_ratio, "[0, inf) (a critical damping ratio)");

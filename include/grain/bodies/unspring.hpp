@@ -233,6 +233,7 @@ private:
         if (rule_.unload[l].first == spring)
           throw InputError(obj + ": " + w + " spring = " + std::to_string(spring) +
                            " is invalid; valid range: a spring without another unloading curve");
+      grain::detail::require_given(curve, obj, w, "the unloading curve");
       const auto& x = curve.x();
       const auto& y = curve.y();
       if (x[0] != 0.0 || y[0] != 0.0)

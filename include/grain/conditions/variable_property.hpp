@@ -123,6 +123,7 @@ struct VariableProperty {
     const std::string obj = std::string("VariableProperty (") + property_name(property) + " vs " +
                             variable_name(variable) + ", group '" + group + "')";
     if (!table) throw InputError(obj + ": table = null is invalid; valid: a Table");
+    detail::require_given(*table, obj, "table", "the table of the property against the variable");
     detail::require(every >= 1, obj, "every", every, "[1, inf) steps");
     detail::require(!std::isnan(t_begin) && t_begin < std::numeric_limits<double>::infinity(), obj,
                     "t_begin", t_begin, "[-inf, inf) s");

@@ -15,10 +15,17 @@
 /// grain::Table c = grain::Table::from_file("ramp.txt");           // "x y" lines, # comments
 /// \endcode
 ///
-/// Every table is validated when it is made: at least two points, finite values, abscissae
-/// strictly increasing. Errors are `InputError`s that name the table (its name, or
+/// Every table made from points is validated when it is made: at least two points, finite values,
+/// abscissae strictly increasing. Errors are `InputError`s that name the table (its name, or
 /// "Table from file '<path>'"), the offending entry (x[i] / y[i], or the line of the file), its
 /// value and the valid range.
+///
+/// `Table()` is the empty table (no points): a placeholder, so that a parameter struct with a
+/// table member can be default-constructed and its table given later
+/// (`bodies::SpringParams p; p.spring = grain::Table(...);`). It is not a function: `empty()` is
+/// true and it evaluates to NaN. Every object that takes a table (a spring, a torsion spring, an
+/// unspring rule, a variable property, `TimeFunction::table`) rejects an empty one in its
+/// validation with an `InputError` saying that the table must be given (`detail::require_given`).
 
 #include <grain/core/error.hpp>
 
@@ -28,6 +35,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -38,6 +46,10 @@ namespace grain {
 
 class Table {
 public:
+  /// The empty table (no points): a placeholder for a table to be given later. `empty()` is true,
+  /// `size()` 0, and every evaluation gives NaN; the objects that take tables reject it.
+  Table() = default;
+
   /// A table from its abscissae `x` and ordinates `y` (same length). `name` appears in error
   /// messages: "Table '<name>'" (just "Table" if empty).
   explicit Table(std::vector<double> x, std::vector<double> y, std::string name = {})
@@ -123,8 +135,10 @@ public:
     return t;
   }
 
-  /// y(x): linear interpolation inside [x_front, x_back], the end value outside. O(log n).
+  /// y(x): linear interpolation inside [x_front, x_back], the end value outside. O(log n). NaN for
+  /// the empty table.
   double operator()(double x) const noexcept {
+    if (x_.empty()) return std::numeric_limits<double>::quiet_NaN();
     if (x <= x_.front()) return y_.front();
     if (x >= x_.back()) return y_.back();
     return interpolate(segment(x), x);
@@ -135,6 +149,7 @@ public:
   /// is updated to the segment of x; any value is a valid starting hint (start with 0). Each
   /// caller (each thread) keeps its own hint; the table itself is never modified.
   double operator()(double x, std::size_t& hint) const noexcept {
+    if (x_.empty()) return std::numeric_limits<double>::quiet_NaN();
     if (x <= x_.front()) {
       hint = 0;
       return y_.front();
@@ -156,23 +171,29 @@ public:
   }
 
   /// The segment i (0 <= i <= size() - 2) with x[i] <= x < x[i+1], clamped to the first and last
-  /// segment outside the range.
+  /// segment outside the range (0 for the empty table, which has no segment).
   std::size_t segment(double x) const noexcept {
+    if (x_.size() < 2) return 0;
     const auto it = std::upper_bound(x_.begin() + 1, x_.end() - 1, x);
     return static_cast<std::size_t>(it - x_.begin()) - 1;
   }
 
   std::size_t size() const noexcept { return x_.size(); }
+  /// True for the empty table of the default constructor (a table made from points never is).
+  bool empty() const noexcept { return x_.empty(); }
   const std::vector<double>& x() const noexcept { return x_; }
   const std::vector<double>& y() const noexcept { return y_; }
-  double x_front() const noexcept { return x_.front(); }
-  double x_back() const noexcept { return x_.back(); }
+  /// The first and last abscissa (NaN for the empty table).
+  double x_front() const noexcept {
+    return x_.empty() ? std::numeric_limits<double>::quiet_NaN() : x_.front();
+  }
+  double x_back() const noexcept {
+    return x_.empty() ? std::numeric_limits<double>::quiet_NaN() : x_.back();
+  }
   /// How the table is named in messages: "Table 'name'", "Table" or "Table from file 'path'".
   const std::string& label() const noexcept { return label_; }
 
 private:
-  Table() = default;
-
   static std::string label_of(const std::string& name) {
     return name.empty() ? std::string("Table") : "Table '" + name + "'";
   }
@@ -242,7 +263,22 @@ private:
   }
 
   std::vector<double> x_, y_;
-  std::string label_;
+  std::string label_ = "Table";
 };
+
+namespace detail {
+
+/// Throws `InputError("<object>: <name> = Table (no points) is invalid; valid range: a Table of
+/// at least 2 points (<what> must be given)")` for the empty table of the default constructor.
+inline void require_given(const Table& t, const std::string& object, const std::string& name,
+                          const std::string& what) {
+  if (t.empty())
+    throw InputError(
+        object + ": " + name +
+        " = Table (no points) is invalid; valid range: a Table of at least 2 points (" + what +
+        " must be given)");
+}
+
+} // namespace detail
 
 } // namespace grain

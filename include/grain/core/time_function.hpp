@@ -105,6 +105,7 @@ public:
   static TimeFunction table(std::shared_ptr<const Table> t) {
     if (!t)
       throw InputError("TimeFunction::table: table = null is invalid; valid range: a Table");
+    detail::require_given(*t, "TimeFunction::table", "table", "the table of the function");
     TimeFunction f;
     f.kind_ = Kind::table;
     f.table_ = std::move(t);
