@@ -41,21 +41,37 @@ BENCHMARK_CAPTURE(pack2d, tiny, 20, 20, 10)->Unit(benchmark::kMillisecond);
 // A fixed number of steps, so that settle3d and thermal3d time the same motion; three repetitions
 // (compare the medians: the machine is noisy).
 BENCHMARK_CAPTURE(settle3d, N1e4, 25, 25, 16, 1000)
-    ->Unit(benchmark::kMillisecond)->Iterations(2000)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2000)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(thermal3d, N1e4, 25, 25, 16, 1000)
-    ->Unit(benchmark::kMillisecond)->Iterations(2000)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2000)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(settle3d, N1e5, 50, 50, 40, 1000)
-    ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(400)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(thermal3d, N1e5, 50, 50, 40, 1000)
-    ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(400)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(pack2d, N1e4, 125, 80, 1000)
-    ->Unit(benchmark::kMillisecond)->Iterations(2000)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2000)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(pack2d, N1e5, 400, 250, 1000)
-    ->Unit(benchmark::kMillisecond)->Iterations(400)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(400)
+    ->Repetitions(3);
 // the case definition's N = 1e6 (100 x 100 x 100, 200 warm-up steps); a few seconds per repetition
 BENCHMARK_CAPTURE(settle3d, N1e6, 100, 100, 100, 200)
-    ->Unit(benchmark::kMillisecond)->Iterations(100)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(100)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(thermal3d, N1e6, 100, 100, 100, 200)
-    ->Unit(benchmark::kMillisecond)->Iterations(100)->Repetitions(3);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(100)
+    ->Repetitions(3);
 
 BENCHMARK_MAIN();

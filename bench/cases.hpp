@@ -3,10 +3,10 @@
 // Hertz-Mindlin, 6 planes) and pack2d (disks, linear spring-dashpot, 4 walls), set up as the
 // LIGGGHTS and LAMMPS inputs they are compared with, and the end-of-run figures those inputs
 // print.
-#include <grain/grain.hpp>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <grain/grain.hpp>
 #include <numbers>
 
 namespace grain::bench {
@@ -21,13 +21,17 @@ inline double rseq(long n, double alpha) {
 /// mu = 0.5, no rolling friction. In 2D the density times the disk thickness (1 mm) gives the
 /// areal density 2.5 kg/m^2 of the peer inputs.
 inline Material case_material() {
-  return {.name = "soft", .density = 2500, .young = 1e7, .poisson = 0.3, .restitution = 0.5,
+  return {.name = "soft",
+          .density = 2500,
+          .young = 1e7,
+          .poisson = 0.3,
+          .restitution = 0.5,
           .friction = 0.5};
 }
 
-inline constexpr double case_diameter = 1e-3;  ///< d [m]
+inline constexpr double case_diameter = 1e-3;    ///< d [m]
 inline constexpr double case_time_step = 2.5e-6; ///< dt [s]
-inline constexpr double case_v0 = 0.1;          ///< amplitude of the initial velocities [m/s]
+inline constexpr double case_v0 = 0.1;           ///< amplitude of the initial velocities [m/s]
 
 // ------------------------------------------------------------------ settle3d
 
@@ -50,10 +54,13 @@ void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz) {
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
         const long n = i + static_cast<long>(nx) * (j + static_cast<long>(ny) * k);
-        const Vec3 v(v0 * (2 * rseq(n, 0.8191725133961645) - 1), v0 * (2 * rseq(n, 0.6710436067037893) - 1),
+        const Vec3 v(v0 * (2 * rseq(n, 0.8191725133961645) - 1),
+                     v0 * (2 * rseq(n, 0.6710436067037893) - 1),
                      v0 * (2 * rseq(n, 0.5497004779019703) - 1));
         ParticleSpec<3> spec{.position = Vec3((i + 0.5) * a, (j + 0.5) * a, (k + 0.5) * a),
-                             .radius = r, .material = m, .velocity = v};
+                             .radius = r,
+                             .material = m,
+                             .velocity = v};
         if constexpr (Sim::thermal) {
           spec.temperature = i < nx / 2 ? 400.0 : 300.0;
           spec.id = n;
@@ -183,8 +190,11 @@ Pack2d<Search> make_pack2d(int nx, int ny, bool per_contact = false) {
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const long n = i + static_cast<long>(nx) * j;
-      const Vec2 v(v0 * (2 * rseq(n, 0.7548776662466927) - 1), v0 * (2 * rseq(n, 0.5698402909980532) - 1));
-      sim.add_particle({.position = Vec2((i + 0.5) * a, (j + 0.5) * a), .radius = r, .material = m,
+      const Vec2 v(v0 * (2 * rseq(n, 0.7548776662466927) - 1),
+                   v0 * (2 * rseq(n, 0.5698402909980532) - 1));
+      sim.add_particle({.position = Vec2((i + 0.5) * a, (j + 0.5) * a),
+                        .radius = r,
+                        .material = m,
                         .velocity = v});
     }
   if (!per_contact) {
@@ -205,11 +215,11 @@ Pack2d<Search> make_pack2d(int nx, int ny, bool per_contact = false) {
 /// The figures the peer inputs print (LIGGGHTS/LAMMPS `compute contact/atom`, `ke`,
 /// `erotate/sphere`, `reduce ave`).
 struct Figures {
-  std::size_t contacts = 0;    ///< particle pairs with |x_i - x_j| <= r_i + r_j
-  double kinetic = 0.0;        ///< sum 1/2 m v^2 [J]
-  double rotational = 0.0;     ///< sum 1/2 (0.4 m r^2) |w|^2 [J], 0.4 also in 2D
-  double mean_height = 0.0;    ///< mean of the last coordinate (z in 3D, y in 2D) [m]
-  std::size_t outside = 0;     ///< particles with a non-finite position or outside `lo`..`hi`
+  std::size_t contacts = 0; ///< particle pairs with |x_i - x_j| <= r_i + r_j
+  double kinetic = 0.0;     ///< sum 1/2 m v^2 [J]
+  double rotational = 0.0;  ///< sum 1/2 (0.4 m r^2) |w|^2 [J], 0.4 also in 2D
+  double mean_height = 0.0; ///< mean of the last coordinate (z in 3D, y in 2D) [m]
+  std::size_t outside = 0;  ///< particles with a non-finite position or outside `lo`..`hi`
 };
 
 /// End-of-run figures of a simulation; `lo`, `hi` are the corners of the box the particles must
@@ -230,7 +240,8 @@ Figures figures(const Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi) {
     f.rotational += 0.5 * 0.4 * p.mass[i] * p.radius[i] * p.radius[i] * squared_norm(p.omega[i]);
     f.mean_height += p.position[i][Sim::D - 1];
     const auto& x = p.position[i];
-    f.outside += !(x.allFinite() && (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all());
+    f.outside +=
+        !(x.allFinite() && (x.array() >= lo.array()).all() && (x.array() <= hi.array()).all());
   }
   if (n > 0) f.mean_height /= static_cast<double>(n);
   return f;

@@ -46,18 +46,23 @@ int main(int argc, char** argv) {
   std::filesystem::path out_dir = "out/hot_pour3d";
   if (!example::parse_arguments(argc, argv, "hot_pour3d", end_time, out_dir)) return 2;
 
-  constexpr double side = 0.03, height = 0.08;     // box [m]
-  constexpr double spacing = 4.6e-3;               // lattice spacing [m]
-  constexpr double cold = 300.0, hot = 500.0;      // [K]
+  constexpr double side = 0.03, height = 0.08; // box [m]
+  constexpr double spacing = 4.6e-3;           // lattice spacing [m]
+  constexpr double cold = 300.0, hot = 500.0;  // [K]
   constexpr int per_layer = 6 * 6, bed_layers = 11, hot_layers = 6;
 
   Sim::Params params;
   params.gravity = Vec3(0, 0, -9.81);
   Sim sim(params);
-  const auto copper = sim.add_material({.name = "copper (softened)", .density = 8900.0,
-                                       .young = 1e8, .poisson = 0.34, .young_real = 1.2e11,
-                                       .restitution = 0.5, .friction = 0.4,
-                                       .conductivity = 400.0, .heat_capacity = 385.0});
+  const auto copper = sim.add_material({.name = "copper (softened)",
+                                        .density = 8900.0,
+                                        .young = 1e8,
+                                        .poisson = 0.34,
+                                        .young_real = 1.2e11,
+                                        .restitution = 0.5,
+                                        .friction = 0.4,
+                                        .conductivity = 400.0,
+                                        .heat_capacity = 385.0});
   // Five planes, each given by the centre of its face of the box (where the VTK files draw it as
   // a square of side `side`) and a normal pointing into the box.
   constexpr double mid = 0.5 * side;
@@ -77,13 +82,15 @@ int main(int argc, char** argv) {
         const double z = 2.5e-3 + k * spacing + (is_hot ? 0.01 : 0.0);
         const Vec3 x(2.6e-3 + i * spacing + rng.uniform(-2e-4, 2e-4),
                      2.6e-3 + j * spacing + rng.uniform(-2e-4, 2e-4), z);
-        sim.add_particle({.position = x, .radius = rng.uniform(1.8e-3, 2.2e-3), .material = copper,
-                          .temperature = is_hot ? hot : cold, .id = id++});
+        sim.add_particle({.position = x,
+                          .radius = rng.uniform(1.8e-3, 2.2e-3),
+                          .material = copper,
+                          .temperature = is_hot ? hot : cold,
+                          .id = id++});
       }
 
   std::printf("hot_pour3d: %lld spheres at %.0f K fall onto %lld spheres at %.0f K\n",
-              static_cast<long long>(id - first_hot), hot, static_cast<long long>(first_hot),
-              cold);
+              static_cast<long long>(id - first_hot), hot, static_cast<long long>(first_hot), cold);
   std::printf("      t [s]   poured mean T [K]   bed mean T [K]   contacts\n");
   auto means = [&](const Sim& s) {
     const auto& p = s.particles();

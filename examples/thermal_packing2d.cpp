@@ -40,8 +40,8 @@
 
 using namespace grain;
 
-using Contact = Interaction<normal::Hertz<>, tangent::None, rolling::None,
-                            conduction::BatchelorOBrien>;
+using Contact =
+    Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::BatchelorOBrien>;
 using Sim = Simulation<Disk, search::CellList, Contact>;
 
 int main(int argc, char** argv) {
@@ -51,9 +51,9 @@ int main(int argc, char** argv) {
 
   constexpr int columns = 20, rows = 12;
   constexpr double R = 1e-3, overlap = 1e-5;
-  const double pitch = 2.0 * R - overlap;          // centre distance [m]
+  const double pitch = 2.0 * R - overlap; // centre distance [m]
   const double row_height = pitch * std::sqrt(3.0) / 2.0;
-  const double hot = 350.0, cold = 300.0;          // [K]
+  const double hot = 350.0, cold = 300.0; // [K]
 
   Sim::Params params;
   params.analysis = Analysis::thermal;
@@ -62,8 +62,11 @@ int main(int argc, char** argv) {
   // (the automatic choice, 0.1 R^2 rho c / k = 1.2 ms, is safe for any packing but slower)
   params.time_step = 0.02;
   Sim sim(params, Disk{.thickness = 2.0 * R});
-  const auto alu = sim.add_material({.name = "aluminium", .density = 2700.0, .young = 7e10,
-                                     .poisson = 0.33, .conductivity = 200.0,
+  const auto alu = sim.add_material({.name = "aluminium",
+                                     .density = 2700.0,
+                                     .young = 7e10,
+                                     .poisson = 0.33,
+                                     .conductivity = 200.0,
                                      .heat_capacity = 900.0});
 
   // Rows alternate between 20 disks and 19 disks shifted by half a pitch. The walls touch the
@@ -96,15 +99,19 @@ int main(int argc, char** argv) {
       sum[c] += p.temperature[i];
       count[c] += 1.0;
     }
-    for (int c = 0; c < columns; ++c) sum[c] /= count[c];
+    for (int c = 0; c < columns; ++c)
+      sum[c] /= count[c];
     return sum;
   };
-  std::printf("thermal_packing2d: %zu aluminium disks between walls at %.0f K and %.0f K, time step "
-              "%.3g s\n", sim.size(), hot, cold, sim.time_step());
+  std::printf(
+      "thermal_packing2d: %zu aluminium disks between walls at %.0f K and %.0f K, time step "
+      "%.3g s\n",
+      sim.size(), hot, cold, sim.time_step());
   auto log = [&](const Sim& s) {
     const auto t = column_means(s);
     std::printf("  t = %6.0f s  column means [K]:", s.time());
-    for (int c = 0; c < columns; c += 3) std::printf(" %7.3f", t[c]);
+    for (int c = 0; c < columns; c += 3)
+      std::printf(" %7.3f", t[c]);
     std::printf("\n");
   };
   const std::string prefix = (out_dir / "thermal_packing2d").string();
@@ -114,7 +121,7 @@ int main(int argc, char** argv) {
   const auto& p = sim.particles();
   // heat through the hot wall: its conductance H to each disk of the first column of the long rows
   const double H = 4.0 * 100.0 * std::sqrt(R / 2.0 * overlap); // 4 k* a, k* = k/2
-  double q_hot = 0.0, q_cold = 0.0; // [W] into the packing, out of it
+  double q_hot = 0.0, q_cold = 0.0;                            // [W] into the packing, out of it
   const double x_last = x_first + (columns - 1) * pitch;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.position[i].x() < x_first + 1e-9) q_hot += H * (hot - p.temperature[i]);
@@ -122,18 +129,22 @@ int main(int argc, char** argv) {
   }
   const bool steady = std::abs(q_hot - q_cold) < 1e-4 * q_hot;
   const auto t = column_means(sim);
-  const double gradient = (t[5] - t[14]) / (9.0 * pitch); // [K/m]
+  const double gradient = (t[5] - t[14]) / (9.0 * pitch);       // [K/m]
   const double network = H * pitch * (rows + 0.5 * (rows - 1)); // [W m / K]
   const double measured = q_hot / gradient;
   bool ok = !steady || std::abs(measured / network - 1.0) < 1e-3;
-  for (double T : p.temperature) ok = ok && T >= cold - 1e-9 && T <= hot + 1e-9;
+  for (double T : p.temperature)
+    ok = ok && T >= cold - 1e-9 && T <= hot + 1e-9;
   std::printf("\n  heat through the hot wall %.5g W, through the cold wall %.5g W (%s); interior "
-              "gradient %.4g K/m\n", q_hot, q_cold,
-              steady ? "steady" : "not steady yet: run longer for the comparison", gradient);
+              "gradient %.4g K/m\n",
+              q_hot, q_cold, steady ? "steady" : "not steady yet: run longer for the comparison",
+              gradient);
   std::printf("  conductance of the strip Q/(dT/dx) = %.6g W m/K; network value H p (12 + 11/2) = "
-              "%.6g W m/K (ratio %.6f)\n", measured, network, measured / network);
-  std::printf("  per unit height %.5g W/K (an unbounded triangular lattice: sqrt(3) H = %.5g W/K)\n",
-              measured / (rows * row_height), std::sqrt(3.0) * H);
+              "%.6g W m/K (ratio %.6f)\n",
+              measured, network, measured / network);
+  std::printf(
+      "  per unit height %.5g W/K (an unbounded triangular lattice: sqrt(3) H = %.5g W/K)\n",
+      measured / (rows * row_height), std::sqrt(3.0) * H);
   std::printf("  output: VTK series in %s\n",
               std::filesystem::absolute(out_dir).lexically_normal().string().c_str());
   return ok ? 0 : 1;

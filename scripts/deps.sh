@@ -3,7 +3,7 @@
 # that are missing). Uses sudo when not run as root.
 set -euo pipefail
 packages=(build-essential cmake libeigen3-dev libboost-dev doctest-dev libbenchmark-dev
-          libqhull-dev ccache python3-vtk9 python3-numpy python3-matplotlib povray)
+          libqhull-dev ccache clang-format python3-vtk9 python3-numpy python3-matplotlib povray)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

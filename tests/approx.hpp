@@ -30,8 +30,8 @@ public:
   double eps() const { return epsilon_; }
 
   friend bool operator==(double a, const Approx& x) {
-    return a == x.value_ ||
-           std::abs(a - x.value_) < x.epsilon_ * (x.scale_ + std::max(std::abs(a), std::abs(x.value_)));
+    return a == x.value_ || std::abs(a - x.value_) <
+                                x.epsilon_ * (x.scale_ + std::max(std::abs(a), std::abs(x.value_)));
   }
   friend bool operator==(const Approx& x, double a) { return a == x; }
   friend bool operator!=(double a, const Approx& x) { return !(a == x); }

@@ -26,7 +26,8 @@ NeighborList pairs_within(const std::vector<Vec<D>>& x, double cut) {
 inline std::vector<Vec2> square_lattice(int n, double s) {
   std::vector<Vec2> x;
   for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) x.emplace_back(i * s, j * s);
+    for (int i = 0; i < n; ++i)
+      x.emplace_back(i * s, j * s);
   return x;
 }
 

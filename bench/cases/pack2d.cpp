@@ -29,9 +29,10 @@ void print_coefficients(const Sim& sim, const char* which, std::size_t a, std::s
   ContactGeometry<2> g;
   g.r_eff = r;
   g.m_eff = m;
-  const auto t = tangent::SpringDashpotSlider::spring<2>(g, pair, NormalResult{0.0, kn, gn, 0.0}, c.tangent);
-  std::printf("kn_%s %.10g\ngn_%s %.10g\nkt_%s %.10g\ngt_%s %.10g\n", which, kn, which, gn, which, t.k,
-              which, t.eta);
+  const auto t =
+      tangent::SpringDashpotSlider::spring<2>(g, pair, NormalResult{0.0, kn, gn, 0.0}, c.tangent);
+  std::printf("kn_%s %.10g\ngn_%s %.10g\nkt_%s %.10g\ngt_%s %.10g\n", which, kn, which, gn, which,
+              t.k, which, t.eta);
 }
 
 } // namespace

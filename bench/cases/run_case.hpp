@@ -16,7 +16,8 @@ namespace grain::bench {
 
 /// Reads the command-line integers of a case program into `values` (left unchanged when there are
 /// no arguments). All must be >= `min[k]`. Returns false on a bad command line.
-inline bool parse_arguments(int argc, char** argv, std::vector<long>& values, const std::vector<long>& min) {
+inline bool parse_arguments(int argc, char** argv, std::vector<long>& values,
+                            const std::vector<long>& min) {
   if (argc == 1) return true;
   if (static_cast<std::size_t>(argc - 1) != values.size()) return false;
   for (std::size_t k = 0; k < values.size(); ++k) {
@@ -64,7 +65,8 @@ int run_case(Sim& sim, const Vec<Sim::D>& lo, const Vec<Sim::D>& hi, long nwarm,
   const long rebuilds0 = sim.counters().rebuilds;
   const auto t0 = std::chrono::steady_clock::now();
   sim.steps(nrun);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const Figures f = figures(sim, lo, hi);
   std::printf("steps %ld\n", sim.step_count());
   std::printf("run_seconds %.6f\n", seconds);

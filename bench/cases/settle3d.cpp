@@ -12,7 +12,9 @@ int main(int argc, char** argv) {
   using namespace grain;
   std::vector<long> a = {25, 25, 16, 1000, 4000};
   if (!bench::parse_arguments(argc, argv, a, {1, 1, 1, 0, 1})) {
-    std::fprintf(stderr, "usage: case_settle3d [NX NY NZ NWARM NRUN]  (NX, NY, NZ, NRUN >= 1; NWARM >= 0)\n");
+    std::fprintf(
+        stderr,
+        "usage: case_settle3d [NX NY NZ NWARM NRUN]  (NX, NY, NZ, NRUN >= 1; NWARM >= 0)\n");
     return 2;
   }
   const int nx = static_cast<int>(a[0]), ny = static_cast<int>(a[1]), nz = static_cast<int>(a[2]);

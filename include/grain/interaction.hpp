@@ -97,12 +97,12 @@ struct Interaction {
                 "grain::Interaction: the 5th argument must be a contact-area correction, i.e. a "
                 "type from namespace grain::area such as area::None (see docs/concepts.md)");
 
-  using normal_model = std::conditional_t<NormalModel<Normal>, Normal,
-                                          detail::InvalidModel<Slot::normal>>;
-  using tangent_model = std::conditional_t<TangentModel<Tangent>, Tangent,
-                                           detail::InvalidModel<Slot::tangent>>;
-  using rolling_model = std::conditional_t<RollingModel<Rolling>, Rolling,
-                                           detail::InvalidModel<Slot::rolling>>;
+  using normal_model =
+      std::conditional_t<NormalModel<Normal>, Normal, detail::InvalidModel<Slot::normal>>;
+  using tangent_model =
+      std::conditional_t<TangentModel<Tangent>, Tangent, detail::InvalidModel<Slot::tangent>>;
+  using rolling_model =
+      std::conditional_t<RollingModel<Rolling>, Rolling, detail::InvalidModel<Slot::rolling>>;
   using conduction_model = std::conditional_t<ConductionModel<Conduction>, Conduction,
                                               detail::InvalidModel<Slot::conduction>>;
   using area_model = std::conditional_t<AreaCorrectionModel<AreaCorrection>, AreaCorrection,
@@ -146,7 +146,7 @@ struct Interaction {
   /// What one contact produces.
   template <int D>
   struct Result {
-    Vec<D> force = Vec<D>::Zero();   ///< total contact force on i (on j: minus this) [N]
+    Vec<D> force = Vec<D>::Zero();            ///< total contact force on i (on j: minus this) [N]
     Angular<D> torque_i = zero<Angular<D>>(); ///< contact torque on i [N m]
     Angular<D> torque_j = zero<Angular<D>>(); ///< contact torque on j [N m]
     NormalResult normal;
@@ -202,15 +202,14 @@ struct Interaction {
     if constexpr (thermal) {
       if (n.detached) return 0.0;
       const double a = area_model::radius(g, pair, n, p.area);
-      const HeatContext c{.contact_radius = a,
-                          .distance = uses_consistent_distance<conduction_model>
-                                          ? consistent_distance(g, a)
-                                          : 0.0,
-                          .gap = 0.0,
-                          .cell_radius = cell_radius,
-                          .length = length,
-                          .time_step = dt,
-                          .touching = true};
+      const HeatContext c{
+          .contact_radius = a,
+          .distance = uses_consistent_distance<conduction_model> ? consistent_distance(g, a) : 0.0,
+          .gap = 0.0,
+          .cell_radius = cell_radius,
+          .length = length,
+          .time_step = dt,
+          .touching = true};
       return conduction_model::conductance(g, pair, c, p.conduction, h.conduction);
     } else {
       return 0.0;

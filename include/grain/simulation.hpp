@@ -108,8 +108,8 @@ class Simulation {
                 "them");
 
 public:
-  using IntegratorT = typename detail::pick<detail::is_integrator, integrate::VelocityVerlet,
-                                            Options...>::type;
+  using IntegratorT =
+      typename detail::pick<detail::is_integrator, integrate::VelocityVerlet, Options...>::type;
   using ConvectionT =
       typename detail::pick<detail::is_convection, convection::None, Options...>::type;
   using CellSizeT =
@@ -161,13 +161,15 @@ public:
   static constexpr double row_bytes = 3 * sizeof(V) + 2 * sizeof(A) + 2 * sizeof(double);
   static constexpr double prefetch_span_bytes = 256 * 1024;
 
-  explicit Simulation(Params params = {}, Shape shape = {}) : params_(std::move(params)), shape_(shape) {
+  explicit Simulation(Params params = {}, Shape shape = {})
+      : params_(std::move(params)), shape_(shape) {
     shape_.validate();
     Contact::validate(params_.contact);
     SearchT::validate(params_.search);
     for (int d = 0; d < D; ++d)
       detail::require_finite("Simulation", "gravity component", params_.gravity[d]);
-    detail::require_non_negative("Simulation", "damping_translational", params_.damping_translational);
+    detail::require_non_negative("Simulation", "damping_translational",
+                                 params_.damping_translational);
     detail::require_non_negative("Simulation", "damping_rotational", params_.damping_rotational);
     detail::require_non_negative("Simulation", "time_step", params_.time_step);
     detail::require_in("Simulation", "auto_time_step_factor", params_.auto_time_step_factor, 1e-6,
@@ -239,9 +241,7 @@ public:
     const std::int64_t id = s.id;
     const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
     // ids below next_id_ may be taken (an id at or above it is new)
-    if (id < next_id_ &&
-        (has_particle(id) ||
-         life_.was_removed(id)))
+    if (id < next_id_ && (has_particle(id) || life_.was_removed(id)))
       throw InputError(obj + ": id = " + std::to_string(id) +
                        " is invalid; valid: an id no other particle has or had (or -1 = next "
                        "free id)");
@@ -346,7 +346,6 @@ private:
   }
 
 public:
-
   /// Adds a wall; returns its index. Throws InputError on bad geometry.
   template <class G>
   std::uint32_t add_wall(const G& geometry, WallOptions<D> options = {}) {
@@ -367,7 +366,8 @@ public:
 
   /// Constant gravity [m/s^2].
   void set_gravity(const V& g) {
-    for (int d = 0; d < D; ++d) detail::require_finite("Simulation", "gravity component", g[d]);
+    for (int d = 0; d < D; ++d)
+      detail::require_finite("Simulation", "gravity component", g[d]);
     params_.gravity = g;
     gravity_fn_.reset();
     gravity_now_ = g;
@@ -422,23 +422,23 @@ public:
         throw InputError(obj + ": wall = " + std::to_string(w) + " is invalid; valid range: [0, " +
                          std::to_string(walls_.size()) + ") (indices returned by add_wall)");
     std::vector<std::int64_t> known = particles_.id;
-    for (const auto& sp : life_.pending) known.push_back(sp.id);
+    for (const auto& sp : life_.pending)
+      known.push_back(sp.id);
     std::sort(known.begin(), known.end());
     for (const auto id : particle_ids)
       if (!std::binary_search(known.begin(), known.end(), id))
         throw InputError(obj + ": particle id = " + std::to_string(id) +
                          " is invalid; valid: ids of added particles");
-    const auto g = cond_.add(Group{std::move(name), false, std::move(particle_ids),
-                                   std::move(wall_indices)});
+    const auto g =
+        cond_.add(Group{std::move(name), false, std::move(particle_ids), std::move(wall_indices)});
     groups_dirty_ = true;
     return g;
   }
   /// Adds a group of the current (active) particles for which pred(position, radius) is true,
   /// and of the given walls.
   template <class Pred>
-    requires std::predicate<Pred&, const V&, double>
-  std::size_t add_group_where(std::string name, Pred pred,
-                              std::vector<std::uint32_t> wall_indices = {}) {
+  requires std::predicate<Pred&, const V&, double> std::size_t
+  add_group_where(std::string name, Pred pred, std::vector<std::uint32_t> wall_indices = {}) {
     std::vector<std::int64_t> ids;
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (pred(particles_.position[i], particles_.radius[i])) ids.push_back(particles_.id[i]);
@@ -487,7 +487,8 @@ public:
                     "Simulation::set_temperature (group '" + group + "')", "temperature",
                     temperature, "[0, inf) K");
     if constexpr (thermal) {
-      for (const auto i : group_indices(group)) particles_.temperature[i] = temperature;
+      for (const auto i : group_indices(group))
+        particles_.temperature[i] = temperature;
       for (auto& s : life_.pending)
         if (in_group(group, s.id)) s.temperature = temperature;
     }
@@ -603,8 +604,7 @@ public:
     life_.bounding_box = r;
   }
   /// Particles whose centre enters this region are removed, while t_begin <= t <= t_end [s].
-  void add_sink(const Region<D>& region,
-                double t_begin = -std::numeric_limits<double>::infinity(),
+  void add_sink(const Region<D>& region, double t_begin = -std::numeric_limits<double>::infinity(),
                 double t_end = std::numeric_limits<double>::infinity()) {
     TimedRegion<D> r{region, t_begin, t_end};
     r.validate("Simulation::add_sink " + std::to_string(life_.sinks.size()));
@@ -633,7 +633,8 @@ public:
   /// Contact-stiffness limit 2 sqrt(m*/k) of the stiffest, lightest contact that can occur [s]
   /// (the stability limit of the undamped oscillator for the symplectic schemes).
   double contact_time_step() const {
-    if (particles_.size() + life_.pending.size() == 0) return std::numeric_limits<double>::infinity();
+    if (particles_.size() + life_.pending.size() == 0)
+      return std::numeric_limits<double>::infinity();
     const double v = reference_speed();
     double t = std::numeric_limits<double>::infinity();
     // smallest particle of each material
@@ -646,7 +647,8 @@ public:
       }
     });
     std::vector<bool> wall_material(nm, false);
-    for (const auto& w : walls_) wall_material[w.options.material] = true;
+    for (const auto& w : walls_)
+      wall_material[w.options.material] = true;
     for (std::size_t a = 0; a < nm; ++a) {
       if (!std::isfinite(rmin[a])) continue;
       for (std::size_t b = 0; b < nm; ++b) {
@@ -699,7 +701,8 @@ public:
       });
       // convection adds h S to the diagonal of C^-1 L only: half of it to the row sum
       if constexpr (ConvectionT::active)
-        for (std::size_t i = 0; i < h.size(); ++i) h[i] += 0.5 * convection_conductance(i);
+        for (std::size_t i = 0; i < h.size(); ++i)
+          h[i] += 0.5 * convection_conductance(i);
       t = time_step::conduction(particles_.heat_capacity, h);
     }
     return t;
@@ -757,8 +760,8 @@ public:
         for (std::size_t i = 0; i < particles_.size(); ++i) {
           const Material& m = table_.material(particles_.material[i]);
           if (!(m.heat_capacity > 0))
-            throw InputError("Material '" + m.name + "': heat_capacity = " +
-                             detail::to_text(m.heat_capacity) +
+            throw InputError("Material '" + m.name +
+                             "': heat_capacity = " + detail::to_text(m.heat_capacity) +
                              " J/(kg K) is invalid for a particle of a thermal simulation; valid "
                              "range: (0, inf) J/(kg K)");
         }
@@ -885,7 +888,8 @@ private:
     const auto t0 = std::chrono::steady_clock::now();
     const double dt = dt_;
     if constexpr (thermal)
-      for (auto& w : walls_) w.update_temperature(time_);
+      for (auto& w : walls_)
+        w.update_temperature(time_);
     ensure_groups();
     call_stages<Hook::begin_step>();
     // the loads of the step are checked before anything moves (a damping function that turns
@@ -930,7 +934,8 @@ private:
     time_ = static_cast<double>(step_ - step0_) * dt_ + time_offset_;
     interrupted_ = false;
     if constexpr (thermal) {
-      for (auto& w : walls_) w.update_temperature(time_); // current for output and queries
+      for (auto& w : walls_)
+        w.update_temperature(time_); // current for output and queries
       if (heats() && !cond_.temperatures.empty()) cond_.fix_temperatures(particles_, time_);
     }
     if (lifecycle_due()) lifecycle();
@@ -1139,8 +1144,7 @@ public:
                        "time or speed (or give the Interaction a conduction model)");
     if constexpr (!thermal)
       if (vp.property == Property::heat_capacity || vp.property == Property::conductivity)
-        throw InputError(std::string("VariableProperty: property = ") +
-                         property_name(vp.property) +
+        throw InputError(std::string("VariableProperty: property = ") + property_name(vp.property) +
                          " is invalid without a thermal state; valid: mechanical properties");
     if (vprops_.add(std::move(vp), g, particles_.size())) table_.set_per_particle(true);
     initialized_ = false;
@@ -1197,8 +1201,7 @@ public:
       for (const auto e : list_.wall_entries(i)) {
         const auto w = list_.walls[e];
         if (!touching_wall(i, w, g)) continue;
-        visit(i, w, true, contact_pair(i, w, true), history_at(hist_.wall, e),
-              cell_radius_wall(e));
+        visit(i, w, true, contact_pair(i, w, true), history_at(hist_.wall, e), cell_radius_wall(e));
       }
     }
   }
@@ -1322,7 +1325,8 @@ public:
     double t = 0.0;
     if constexpr (thermal) {
       if (particles_.size() == 0) return std::numeric_limits<double>::quiet_NaN();
-      for (double x : particles_.temperature) t += x;
+      for (double x : particles_.temperature)
+        t += x;
       return t / static_cast<double>(particles_.size());
     } else {
       return std::numeric_limits<double>::quiet_NaN();
@@ -1339,7 +1343,8 @@ private:
   }
   static std::string to_text(const V& v) {
     std::string s = "(";
-    for (int d = 0; d < D; ++d) s += detail::to_text(v[d]) + (d + 1 < D ? ", " : ")");
+    for (int d = 0; d < D; ++d)
+      s += detail::to_text(v[d]) + (d + 1 < D ? ", " : ")");
     return s;
   }
   /// Visits (radius, material, mass) of every active and inactive particle.
@@ -1385,7 +1390,8 @@ private:
   std::vector<std::uint32_t> group_walls(std::size_t g) const {
     if (!cond_.groups[g].everything) return cond_.groups[g].walls;
     std::vector<std::uint32_t> all(walls_.size());
-    for (std::size_t w = 0; w < all.size(); ++w) all[w] = static_cast<std::uint32_t>(w);
+    for (std::size_t w = 0; w < all.size(); ++w)
+      all[w] = static_cast<std::uint32_t>(w);
     return all;
   }
   /// Refreshes the current indices of the groups (after indices changed or conditions were added).
@@ -1401,9 +1407,12 @@ private:
   }
   double reference_speed() const {
     double v = 0.0;
-    for (const auto& u : particles_.velocity) v = std::max(v, u.norm());
-    for (const auto& s : life_.pending) v = std::max(v, s.velocity.norm());
-    for (const auto& w : walls_) v = std::max(v, w.options.velocity.norm());
+    for (const auto& u : particles_.velocity)
+      v = std::max(v, u.norm());
+    for (const auto& s : life_.pending)
+      v = std::max(v, s.velocity.norm());
+    for (const auto& w : walls_)
+      v = std::max(v, w.options.velocity.norm());
     return std::max(params_.reference_velocity, 2.0 * v);
   }
 
@@ -1447,10 +1456,7 @@ private:
   bool fixed_particle(std::size_t i) const {
     if (particles_.inv_mass[i] != 0.0) return false;
     return !std::apply(
-        [i](const auto&... f) {
-          return (detail::field_driven(f[i]) || ... || false);
-        },
-        fields_);
+        [i](const auto&... f) { return (detail::field_driven(f[i]) || ... || false); }, fields_);
   }
   /// Effective mass of the contact of particles i and j [kg]: m_i m_j / (m_i + m_j) (m_eff), or
   /// the free partner's mass if the other is fixed (an infinite mass, as against a wall; the
@@ -1491,7 +1497,8 @@ private:
       }
       const double dp = std::sqrt(d2);
       double dw = 0.0;
-      for (const auto& w : walls_) dw = std::max(dw, w.displacement_since_snapshot(reach_));
+      for (const auto& w : walls_)
+        dw = std::max(dw, w.displacement_since_snapshot(reach_));
       far = 2.0 * dp >= skin_ || dp + dw >= skin_;
     }
     if (SearchT::due(params_.search, steps_since_rebuild_, far)) rebuild();
@@ -1558,7 +1565,7 @@ private:
     const std::size_t n = p.size();
     find_fixed();
     require_finite_state(); // a non-finite position has no cell
-    collect_wall_loads(); // the loads of the last evaluation outlive the list entries
+    collect_wall_loads();   // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(list_);
     Histories old_hist = std::move(hist_);
     // the new list will be about as long as the old one (one allocation instead of doublings)
@@ -1592,8 +1599,9 @@ private:
         const std::size_t k0 = perm.empty() ? k : perm[k];
         return mapped ? origin_[k0] : static_cast<std::uint32_t>(k0);
       };
-      hist_.carry_over(old, old_hist, list_, old_of,
-                       [](History& h) { Contact::template reverse<D>(h); }, parallel_threshold);
+      hist_.carry_over(
+          old, old_hist, list_, old_of, [](History& h) { Contact::template reverse<D>(h); },
+          parallel_threshold);
     } else {
       hist_.reset(list_);
     }
@@ -1602,10 +1610,12 @@ private:
     // reach of a plane rotation: farthest particle from any wall pivot
     reach_ = 0.0;
     for (const auto& w : walls_) {
-      for (const auto& x : p.position) reach_ = std::max(reach_, (x - w.pivot).norm());
+      for (const auto& x : p.position)
+        reach_ = std::max(reach_, (x - w.pivot).norm());
     }
     reach_ += 2.0 * r_max_ + skin_;
-    for (auto& w : walls_) w.take_snapshot();
+    for (auto& w : walls_)
+      w.take_snapshot();
     steps_since_rebuild_ = 0;
     ++counters_.rebuilds;
     if (!perm.empty() || !origin_.empty()) groups_dirty_ = true;
@@ -1633,7 +1643,8 @@ private:
     const auto& p = particles_;
     const std::size_t n = p.size();
     std::vector<Material> eff(n);
-    for (std::size_t i = 0; i < n; ++i) eff[i] = material_of(i);
+    for (std::size_t i = 0; i < n; ++i)
+      eff[i] = material_of(i);
     pair_cache_.resize(list_.partners.size());
     wall_pair_cache_.resize(list_.walls.size());
     const long nl = static_cast<long>(n);
@@ -1662,7 +1673,8 @@ private:
     const bool thermal_change = changes.thermal;
     if (radius) {
       // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
-      for (double r : p.radius) r_max_ = std::max(r_max_, r);
+      for (double r : p.radius)
+        r_max_ = std::max(r_max_, r);
       skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
       if (heats()) cutoff_ = largest_cutoff();
       if (initialized_) rebuild();
@@ -1819,7 +1831,8 @@ private:
         work_rows_[static_cast<std::size_t>(i)] += w;
       }
       double sum = 0.0;
-      for (double w : work_rows_) sum += w;
+      for (double w : work_rows_)
+        sum += w;
       work_in_ += sum * dt_;
     }
     if (prefilled) {
@@ -1875,12 +1888,16 @@ private:
   double surface_area(double r) const { return shape_.surface(r); }
 
   const std::vector<V>& force_velocity() const {
-    if constexpr (predicts_velocity) return vf_;
-    else return particles_.velocity;
+    if constexpr (predicts_velocity)
+      return vf_;
+    else
+      return particles_.velocity;
   }
   const std::vector<A>& force_omega() const {
-    if constexpr (predicts_velocity && Contact::has_torque) return wf_;
-    else return particles_.omega;
+    if constexpr (predicts_velocity && Contact::has_torque)
+      return wf_;
+    else
+      return particles_.omega;
   }
 
   /// Requests the data that row i reads of its partners at or beyond `end` (the next chunk's
@@ -2161,7 +2178,10 @@ private:
 
   /// Cylinder length of 2D disks for the conduction models (0 for spheres and sphere-mass disks).
   double length() const {
-    if constexpr (requires { shape_.thickness; shape_.sphere_mass; })
+    if constexpr (requires {
+                    shape_.thickness;
+                    shape_.sphere_mass;
+                  })
       return shape_.sphere_mass ? 0.0 : shape_.thickness;
     else
       return 0.0;
@@ -2171,12 +2191,18 @@ private:
   double cell_radius_pair(std::size_t e) const {
     if constexpr (Contact::needs_cell_radius)
       return e < cell_pair_.size() ? cell_pair_[e] : std::numeric_limits<double>::infinity();
-    else { (void)e; return std::numeric_limits<double>::infinity(); }
+    else {
+      (void)e;
+      return std::numeric_limits<double>::infinity();
+    }
   }
   double cell_radius_wall(std::size_t e) const {
     if constexpr (Contact::needs_cell_radius)
       return e < cell_wall_.size() ? cell_wall_[e] : std::numeric_limits<double>::infinity();
-    else { (void)e; return std::numeric_limits<double>::infinity(); }
+    else {
+      (void)e;
+      return std::numeric_limits<double>::infinity();
+    }
   }
   /// Conductance across the gap of a pair that does not touch (0 beyond the cutoff).
   double gap_pair_conductance(std::size_t i, std::size_t j, std::size_t e,
@@ -2211,7 +2237,7 @@ private:
       const double pr = f.viscosity * f.heat_capacity / f.conductivity;
       const double dia = 2.0 * particles_.radius[i];
       const V v = moves() && force_velocity().size() == particles_.size() ? force_velocity()[i]
-                                                                           : V(V::Zero());
+                                                                          : V(V::Zero());
       const double re = f.density * dia * (f.velocity - v).norm() / f.viscosity;
       const double h = ConvectionT::nusselt(re, pr, params_.convection) * f.conductivity / dia;
       return h * shape_.surface(particles_.radius[i]);
@@ -2229,7 +2255,8 @@ private:
       const long n = static_cast<long>(p.size());
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
       for (long i = 0; i < n; ++i)
-        p.heat_rate[i] += convection_conductance(static_cast<std::size_t>(i)) * (tf - p.temperature[i]);
+        p.heat_rate[i] +=
+            convection_conductance(static_cast<std::size_t>(i)) * (tf - p.temperature[i]);
     }
   }
 
@@ -2238,8 +2265,8 @@ private:
     static_pairs_.clear();
     static_walls_.clear();
     for_each_conductance([&](std::size_t i, std::size_t j, bool wall, double H) {
-      (wall ? static_walls_ : static_pairs_).push_back({static_cast<std::uint32_t>(i),
-                                                         static_cast<std::uint32_t>(j), H});
+      (wall ? static_walls_ : static_pairs_)
+          .push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), H});
     });
   }
 
@@ -2337,7 +2364,8 @@ private:
 #pragma omp parallel for schedule(static) if (n >= parallel_threshold)
     for (long i = 0; i < n; ++i) {
       const V a = p.force[i] * p.inv_mass[i];
-      IntegratorT::after(p.velocity[i], a, dt, [&](const V& u, double h) { p.position[i] += u * h; });
+      IntegratorT::after(p.velocity[i], a, dt,
+                         [&](const V& u, double h) { p.position[i] += u * h; });
       if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
         const A al = p.torque[i] * p.inv_inertia[i];
         IntegratorT::after(p.omega[i], al, dt, [&](const A& u, double h) {
@@ -2614,7 +2642,7 @@ private:
   std::vector<Wall<D>> walls_;
   NeighborList list_;
   using Histories = ContactHistories<History>;
-  Histories hist_; ///< the contact histories of the list entries
+  Histories hist_;            ///< the contact histories of the list entries
   bool kick_pending_ = false; ///< the last step's second half kick is left to the next step
   bool heat_pending_ = false; ///< the last step's temperature update is left to the next step
   History blank_history_{};   ///< a value-initialised history (what a pair without contact has)
@@ -2651,11 +2679,12 @@ private:
   // groups and conditions
   // variable properties
   VariableProperties<D> vprops_; ///< properties that follow tables, per-particle values
-  std::vector<PairProperties> pair_cache_, wall_pair_cache_; ///< per list entry, when vprops_.per_particle
+  std::vector<PairProperties> pair_cache_,
+      wall_pair_cache_; ///< per list entry, when vprops_.per_particle
   // energy bookkeeping (SimulationParams::track_dissipation)
-  bool tracking_ = false;          ///< accumulating in the current force evaluation
-  std::vector<double> work_rows_;  ///< power delivered by the contacts of each row and damping [W]
-  double work_in_ = 0.0;           ///< work delivered to the bodies by contacts and damping [J]
+  bool tracking_ = false;         ///< accumulating in the current force evaluation
+  std::vector<double> work_rows_; ///< power delivered by the contacts of each row and damping [W]
+  double work_in_ = 0.0;          ///< work delivered to the bodies by contacts and damping [J]
   double elastic_start_ = std::numeric_limits<double>::quiet_NaN(); ///< elastic energy at start [J]
   mutable detail::ConditionSet<D> cond_; ///< (its indices are refreshed lazily)
   mutable bool groups_dirty_ = true;

@@ -47,7 +47,8 @@ std::string num(double x) {
 template <int D>
 std::string vec(const grain::Vec<D>& v) {
   std::string s = "[";
-  for (int d = 0; d < D; ++d) s += num(v[d]) + (d + 1 < D ? ", " : "]");
+  for (int d = 0; d < D; ++d)
+    s += num(v[d]) + (d + 1 < D ? ", " : "]");
   return s;
 }
 std::string angular(double w) { return "[0, 0, " + num(w) + "]"; }
@@ -74,9 +75,18 @@ namespace fields = grain::io::fields;
 const std::vector<Variant> kVariants = {
     {"", "ascii", {"all"}, {}, "", true}, // the positional io::vtk(prefix, plane_size, contacts)
     {"_binary", "binary", {"all"}, {}, "", true},
-    {"_fields", "ascii", {"velocity", "orientation", "material", "torque"}, {}, "", false,
+    {"_fields",
+     "ascii",
+     {"velocity", "orientation", "material", "torque"},
+     {},
+     "",
+     false,
      fields::torque | fields::material | fields::velocity | fields::orientation},
-    {"_fields_binary", "binary", {"mass", "id", "omega"}, {"heat_rate", "heat_capacity"}, "",
+    {"_fields_binary",
+     "binary",
+     {"mass", "id", "omega"},
+     {"heat_rate", "heat_capacity"},
+     "",
      false},
     {"_group", "binary", {"all"}, {}, "pair", true},
     {"_group_fields", "ascii", {"radius", "force"}, {"temperature"}, "pair", true},
@@ -109,7 +119,7 @@ grain::io::VtkWriter writer(const std::filesystem::path& prefix, const Variant& 
                   .fields = v.bits ? *v.bits : named,
                   .group = v.group,
                   .format = std::strcmp(v.format, "binary") == 0 ? io::VtkFormat::binary
-                                                                   : io::VtkFormat::ascii});
+                                                                 : io::VtkFormat::ascii});
 }
 
 /// JSON text of one wall geometry.
@@ -117,16 +127,16 @@ std::string wall_json(const grain::walls::Segment& g) {
   return R"({"type": "segment", "a": )" + vec<2>(g.a) + R"(, "b": )" + vec<2>(g.b) + "}";
 }
 std::string wall_json(const grain::walls::Circle& g) {
-  return R"({"type": "circle", "center": )" + vec<2>(g.center) + R"(, "radius": )" +
-         num(g.radius) + "}";
+  return R"({"type": "circle", "center": )" + vec<2>(g.center) + R"(, "radius": )" + num(g.radius) +
+         "}";
 }
 std::string wall_json(const grain::walls::Plane& g) {
-  return R"({"type": "plane", "point": )" + vec<3>(g.point) + R"(, "normal": )" +
-         vec<3>(g.normal) + "}";
+  return R"({"type": "plane", "point": )" + vec<3>(g.point) + R"(, "normal": )" + vec<3>(g.normal) +
+         "}";
 }
 std::string wall_json(const grain::walls::Triangle& g) {
-  return R"({"type": "triangle", "a": )" + vec<3>(g.a) + R"(, "b": )" + vec<3>(g.b) +
-         R"(, "c": )" + vec<3>(g.c) + "}";
+  return R"({"type": "triangle", "a": )" + vec<3>(g.a) + R"(, "b": )" + vec<3>(g.b) + R"(, "c": )" +
+         vec<3>(g.c) + "}";
 }
 
 /// Output action run right after io::vtk in the same every(): records the state the VTK writer
@@ -170,8 +180,8 @@ struct Recorder {
     sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
                              double q) {
       using C = typename Sim::contact_type;
-      const auto& pair = sim.pair_properties(
-          p.material[i], wall ? sim.walls()[j].options.material : p.material[j]);
+      const auto& pair = sim.pair_properties(p.material[i], wall ? sim.walls()[j].options.material
+                                                                 : p.material[j]);
       o << (first ? "\n         " : ",\n         ") << "{\"id_i\": " << p.id[i]
         << ", \"id_j\": " << (wall ? -1 : p.id[j]) << ", \"wall\": " << (wall ? long(j) : -1L)
         << ", \"normal_force\": " << num(r.normal.force)
@@ -186,7 +196,8 @@ struct Recorder {
     for (const char* g : kGroups) {
       o << (g == kGroups[0] ? "" : ", ") << quoted(g) << ": [";
       const auto& members = sim.group_indices(g);
-      for (std::size_t k = 0; k < members.size(); ++k) o << (k ? ", " : "") << p.id[members[k]];
+      for (std::size_t k = 0; k < members.size(); ++k)
+        o << (k ? ", " : "") << p.id[members[k]];
       o << "]";
     }
     o << "}}";
@@ -219,11 +230,13 @@ struct Writers {
   std::vector<grain::io::VtkWriter> all;
   template <class Sim>
   void start(const Sim& sim) {
-    for (auto& w : all) w.start(sim);
+    for (auto& w : all)
+      w.start(sim);
   }
   template <class Sim>
   void operator()(const Sim& sim) {
-    for (auto& w : all) w(sim);
+    for (auto& w : all)
+      w(sim);
   }
 };
 
@@ -260,10 +273,9 @@ bool check_errors(Sim& sim, const std::filesystem::path& dir) {
     ok = expect_input_error(
              "a thermal field of a mechanical simulation (io::vtk)",
              [&] {
-               sim.steps(1, io::every(interval,
-                                      io::vtk((dir / "bad_fields").string(),
-                                              {.fields = io::fields::velocity |
-                                                         io::fields::temperature})));
+               sim.steps(1, io::every(interval, io::vtk((dir / "bad_fields").string(),
+                                                        {.fields = io::fields::velocity |
+                                                                   io::fields::temperature})));
              },
              {"grain::io::vtk: field = 'temperature'", "mechanical simulation",
               "valid values: id, radius, velocity, omega, force, torque, mass, orientation, "
@@ -278,18 +290,18 @@ bool check_errors(Sim& sim, const std::filesystem::path& dir) {
              {"write_particles_vtk", "field = 'heat_capacity'", "valid values: id, radius"}) &&
          ok;
   }
-  ok = expect_input_error(
-           "an unknown field name",
-           [] { (void)io::fields::named({"velocity", "temprature"}); },
-           {"field = 'temprature'", "temperature, heat_rate, heat_capacity, all"}) &&
+  ok = expect_input_error("an unknown field name",
+                          [] {
+                            (void)io::fields::named({"velocity", "temprature"});
+                          },
+                          {"field = 'temprature'", "temperature, heat_rate, heat_capacity, all"}) &&
        ok;
-  ok = expect_input_error(
-           "an unknown group",
-           [&] {
-             sim.steps(1, io::every(interval, io::vtk((dir / "bad_group").string(),
-                                                      {.group = "nosuch"})));
-           },
-           {"'nosuch'", "'pair'", "'nobody'"}) &&
+  ok = expect_input_error("an unknown group",
+                          [&] {
+                            sim.steps(1, io::every(interval, io::vtk((dir / "bad_group").string(),
+                                                                     {.group = "nosuch"})));
+                          },
+                          {"'nosuch'", "'pair'", "'nobody'"}) &&
        ok;
   // outside every() the writer first runs after a step: start() must check before the run
   const long steps = sim.step_count();
@@ -323,8 +335,8 @@ void run_series(Sim& sim, const std::filesystem::path& dir, const std::string& n
       fields += (fields.empty() ? "" : ", ") + quoted(f);
     series += (series.empty() ? "\n  " : ",\n  ") + quoted(name + v.suffix) +
               ": {\"run\": " + quoted(name) + ", \"format\": " + quoted(v.format) +
-              ", \"fields\": [" + fields + "], \"group\": " +
-              (v.group[0] ? quoted(v.group) : std::string("null")) +
+              ", \"fields\": [" + fields +
+              "], \"group\": " + (v.group[0] ? quoted(v.group) : std::string("null")) +
               ", \"contacts\": " + (v.contacts ? "true" : "false") + "}";
   }
   sim.steps(kSteps, grain::io::every(interval, std::move(writers), Recorder{&frames}));
@@ -374,16 +386,36 @@ void disks(const std::filesystem::path& dir, std::string& runs, std::string& ser
                                                                        grain::Disk{0.01, false});
   const auto m = sim.add_material(material());
   // ids out of order, so that the reader has to match particles by id
-  sim.add_particle({.position = {-0.02, -0.04}, .radius = 0.011, .material = m,
-                    .velocity = {0.031, -0.012}, .omega = 1.5, .id = 7});
-  sim.add_particle({.position = {0.0021, -0.039}, .radius = 0.012, .material = m,
-                    .velocity = {-0.024, 0.017}, .omega = -2.25, .id = 3});
-  sim.add_particle({.position = {0.0245, -0.0405}, .radius = 0.0105, .material = m,
-                    .velocity = {0.0, 0.043}, .omega = 0.75, .id = 12});
-  sim.add_particle({.position = {0.0013, 0.0895}, .radius = 0.0113, .material = m,
-                    .velocity = {0.052, 0.011}, .omega = -3.5, .id = 5});
-  sim.add_particle({.position = {-0.05, 0.02}, .radius = 0.0097, .material = m,
-                    .velocity = {-0.013, -0.029}, .omega = 0.0, .id = 40});
+  sim.add_particle({.position = {-0.02, -0.04},
+                    .radius = 0.011,
+                    .material = m,
+                    .velocity = {0.031, -0.012},
+                    .omega = 1.5,
+                    .id = 7});
+  sim.add_particle({.position = {0.0021, -0.039},
+                    .radius = 0.012,
+                    .material = m,
+                    .velocity = {-0.024, 0.017},
+                    .omega = -2.25,
+                    .id = 3});
+  sim.add_particle({.position = {0.0245, -0.0405},
+                    .radius = 0.0105,
+                    .material = m,
+                    .velocity = {0.0, 0.043},
+                    .omega = 0.75,
+                    .id = 12});
+  sim.add_particle({.position = {0.0013, 0.0895},
+                    .radius = 0.0113,
+                    .material = m,
+                    .velocity = {0.052, 0.011},
+                    .omega = -3.5,
+                    .id = 5});
+  sim.add_particle({.position = {-0.05, 0.02},
+                    .radius = 0.0097,
+                    .material = m,
+                    .velocity = {-0.013, -0.029},
+                    .omega = 0.0,
+                    .id = 40});
   grain::WallOptions<2> moving;
   moving.name = "floor";
   moving.material = m;
@@ -401,8 +433,7 @@ void disks(const std::filesystem::path& dir, std::string& runs, std::string& ser
   run_series(sim, dir, "disks", runs, series, ok);
 }
 
-void spheres(const std::filesystem::path& dir, std::string& runs, std::string& series,
-             bool& ok) {
+void spheres(const std::filesystem::path& dir, std::string& runs, std::string& series, bool& ok) {
   grain::Simulation<grain::Sphere, grain::search::CellList, ThermalContact>::Params params;
   params.gravity = grain::Vec3(0.0, 0.0, -9.81);
   params.initial_temperature = 310.0;
@@ -412,17 +443,37 @@ void spheres(const std::filesystem::path& dir, std::string& runs, std::string& s
   mat.heat_capacity = 800.0;
   const auto m = sim.add_material(mat);
   // ids in reverse spatial order: the cell list re-sorts the arrays
-  sim.add_particle({.position = {0.09, 0.01, 0.0095}, .radius = 0.0105, .material = m,
-                    .velocity = {0.012, -0.021, 0.005}, .omega = {0.5, -1.25, 2.0},
-                    .temperature = 350.0, .id = 20});
-  sim.add_particle({.position = {0.0695, 0.0105, 0.0097}, .radius = 0.0102, .material = m,
-                    .velocity = {-0.031, 0.004, 0.0}, .omega = {-1.5, 0.0, 0.25}, .id = 4});
-  sim.add_particle({.position = {0.02, -0.03, 0.0118}, .radius = 0.012, .material = m,
-                    .velocity = {0.0, 0.0, -0.041}, .omega = {0.0, 3.0, 0.0}, .id = 9});
-  sim.add_particle({.position = {0.1002, -0.0011, 0.0398}, .radius = 0.0107, .material = m,
-                    .velocity = {0.007, 0.009, -0.011}, .omega = {1.0, 1.0, -1.0}, .id = 15});
-  sim.add_particle({.position = {-0.01, -0.06, 0.05}, .radius = 0.0093, .material = m,
-                    .velocity = {0.021, 0.033, -0.017}, .omega = {0.0, 0.0, 0.0}, .id = 1});
+  sim.add_particle({.position = {0.09, 0.01, 0.0095},
+                    .radius = 0.0105,
+                    .material = m,
+                    .velocity = {0.012, -0.021, 0.005},
+                    .omega = {0.5, -1.25, 2.0},
+                    .temperature = 350.0,
+                    .id = 20});
+  sim.add_particle({.position = {0.0695, 0.0105, 0.0097},
+                    .radius = 0.0102,
+                    .material = m,
+                    .velocity = {-0.031, 0.004, 0.0},
+                    .omega = {-1.5, 0.0, 0.25},
+                    .id = 4});
+  sim.add_particle({.position = {0.02, -0.03, 0.0118},
+                    .radius = 0.012,
+                    .material = m,
+                    .velocity = {0.0, 0.0, -0.041},
+                    .omega = {0.0, 3.0, 0.0},
+                    .id = 9});
+  sim.add_particle({.position = {0.1002, -0.0011, 0.0398},
+                    .radius = 0.0107,
+                    .material = m,
+                    .velocity = {0.007, 0.009, -0.011},
+                    .omega = {1.0, 1.0, -1.0},
+                    .id = 15});
+  sim.add_particle({.position = {-0.01, -0.06, 0.05},
+                    .radius = 0.0093,
+                    .material = m,
+                    .velocity = {0.021, 0.033, -0.017},
+                    .omega = {0.0, 0.0, 0.0},
+                    .id = 1});
   grain::WallOptions<3> floor;
   floor.name = "floor";
   floor.material = m;
@@ -434,9 +485,9 @@ void spheres(const std::filesystem::path& dir, std::string& runs, std::string& s
   tilted.name = "shelf";
   tilted.material = m;
   tilted.omega = grain::Vec3(0.4, -0.3, 1.2);
-  sim.add_wall(grain::walls::Triangle{{0.05, -0.05, 0.03}, {0.15, -0.045, 0.031},
-                                      {0.1, 0.05, 0.0295}},
-               tilted);
+  sim.add_wall(
+      grain::walls::Triangle{{0.05, -0.05, 0.03}, {0.15, -0.045, 0.031}, {0.1, 0.05, 0.0295}},
+      tilted);
   // an obstacle: a square of two triangles that moves and turns about its reference point; 1
   // rests on it exactly over the shared diagonal (one contact)
   grain::add_obstacle(sim,
@@ -476,7 +527,8 @@ int main(int argc, char** argv) {
       << ",\n \"series\": {" << series << "},\n \"runs\": {" << runs << "}}\n";
     o.close();
     if (!o) {
-      std::fprintf(stderr, "write_vtk: cannot write %s\n", (dir / "expected.json").string().c_str());
+      std::fprintf(stderr, "write_vtk: cannot write %s\n",
+                   (dir / "expected.json").string().c_str());
       return 1;
     }
     return ok ? 0 : 1;

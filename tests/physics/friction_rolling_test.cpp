@@ -7,6 +7,11 @@
 // spring-dashpot normal force. kappa = 1 + m R^2/I: 7/2 (sphere), 3 (disk).
 //
 // Set GRAIN_TEST_REPORT=1 to print the measured values and errors.
+#include "../approx.hpp"
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/rolling/constant.hpp>
 #include <grain/models/rolling/epsd.hpp>
@@ -20,11 +25,6 @@
 #include <grain/models/tangent/spring_slider.hpp>
 #include <grain/models/tangent/tsuji.hpp>
 #include <grain/models/tangent/zheng_zhu_yu.hpp>
-#include <doctest/doctest.h>
-#include "../approx.hpp"
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <numbers>
 #include <string>
 #include <type_traits>

@@ -6,15 +6,15 @@
 // evaluation already sees the contact) with gravity off, search::AllPairs and velocity Verlet,
 // at a time step of t_c/N with N >= 200 (N = 2000 for damped contacts, whose rebound converges
 // slowly). Tolerance class B: 0.5 % relative. Each test prints its largest relative errors.
+#include "../approx.hpp"
+#include <algorithm>
+#include <cmath>
+#include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <grain/models/normal/hertz.hpp>
 #include <grain/models/normal/hertz_equivalent.hpp>
 #include <grain/models/normal/linear_spring_dashpot.hpp>
 #include <grain/models/normal/walton_braun.hpp>
-#include <doctest/doctest.h>
-#include "../approx.hpp"
-#include <algorithm>
-#include <cmath>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -326,8 +326,8 @@ TEST_CASE("Hertz: the undamped impact (maximum overlap, force, contact time)") {
       CHECK_REL(errors, "e", r.restitution, 1.0, 1e-4);
       // t_c = 2.9432 delta_max / v = 3.2181 (m*/K_hz)^(2/5) v^(-1/5)
       CHECK(tc == grain::test::approx(2.9432 * dmax / v).epsilon(1e-4));
-      CHECK(tc ==
-            grain::test::approx(3.2181 * std::pow(m_star / kh, 0.4) * std::pow(v, -0.2)).epsilon(1e-4));
+      CHECK(tc == grain::test::approx(3.2181 * std::pow(m_star / kh, 0.4) * std::pow(v, -0.2))
+                      .epsilon(1e-4));
     }
   MESSAGE("relative errors at t_c/200:" << errors.summary());
 }

@@ -1,7 +1,7 @@
 // Cell-size methods without qhull (grain/thermal/cells.hpp): the porosity relation, disk and ball
 // overlaps with polygons and polyhedra, 2D global and local porosity, radii from porosities.
-#include <doctest/doctest.h>
 #include "../lattices.hpp"
+#include <doctest/doctest.h>
 #include <grain/thermal/cells.hpp>
 
 #include <algorithm>

@@ -35,7 +35,8 @@ NeighborList make_list(const std::vector<std::vector<std::uint32_t>>& rows,
     }
     l.offsets.push_back(static_cast<std::uint32_t>(l.partners.size()));
     if (i < wall_rows.size())
-      for (auto w : wall_rows[i]) l.walls.push_back(w);
+      for (auto w : wall_rows[i])
+        l.walls.push_back(w);
     l.wall_offsets.push_back(static_cast<std::uint32_t>(l.walls.size()));
   }
   return l;
@@ -92,7 +93,8 @@ TEST_CASE("contact histories: carry-over through a re-sorting, with mirrored pai
   carried.carry_over(
       now, h, now, [](std::size_t) { return H::none; }, [](Spring& s) { s.s = -s.s; }, 1);
   CHECK(carried.pair.size() == 4); // nothing known: all blank
-  for (const auto& x : carried.pair) CHECK(H::blank(x));
+  for (const auto& x : carried.pair)
+    CHECK(H::blank(x));
   carried.carry_over(
       old, h, now, [&](std::size_t k) { return perm[k]; }, [](Spring& s) { s.s = -s.s; }, 1);
   // a pair whose old row is the larger index has its roles swapped: mirrored
@@ -122,16 +124,25 @@ TEST_CASE("contact histories: carry-over across a removal and an addition") {
   par.carry_over(
       old, h, now, [&](std::size_t k) { return origin[k]; }, [](Spring& s) { s.s = -s.s; }, 0);
   CHECK(par.pair.size() == carried.pair.size());
-  for (std::size_t e = 0; e < par.pair.size(); ++e) CHECK(par.pair[e].s == carried.pair[e].s);
+  for (std::size_t e = 0; e < par.pair.size(); ++e)
+    CHECK(par.pair[e].s == carried.pair[e].s);
 }
 
 TEST_CASE("pair table: mixing, overrides, per-pair parameters and their resolution") {
   using Contact = Interaction<normal::Hertz<>, tangent::Mindlin>;
   PairTable<Contact> t({}, 0.025);
-  const Material glass{.name = "glass", .density = 2500, .young = 6e10, .poisson = 0.25,
-                       .restitution = 0.9, .friction = 0.3};
-  const Material steel{.name = "steel", .density = 7800, .young = 2e11, .poisson = 0.3,
-                       .restitution = 0.7, .friction = 0.5};
+  const Material glass{.name = "glass",
+                       .density = 2500,
+                       .young = 6e10,
+                       .poisson = 0.25,
+                       .restitution = 0.9,
+                       .friction = 0.3};
+  const Material steel{.name = "steel",
+                       .density = 7800,
+                       .young = 2e11,
+                       .poisson = 0.3,
+                       .restitution = 0.7,
+                       .friction = 0.5};
   CHECK(t.add_material(glass) == 0);
   CHECK(t.add_material(steel) == 1);
   CHECK(t.size() == 2);
@@ -223,17 +234,17 @@ using Sim = Simulation<Sphere, S, Contact>;
 /// A loose pile of spheres above a floor, the same for every search.
 template <class S>
 void pile(Sim<S>& sim) {
-  const auto m = sim.add_material({.density = 2500, .young = 1e7, .poisson = 0.25,
-                                   .restitution = 0.5, .friction = 0.5});
+  const auto m = sim.add_material(
+      {.density = 2500, .young = 1e7, .poisson = 0.25, .restitution = 0.5, .friction = 0.5});
   int k = 0;
   for (int z = 0; z < 4; ++z)
     for (int y = 0; y < 5; ++y)
       for (int x = 0; x < 5; ++x, ++k) {
         const double r = 1e-3 * (0.8 + 0.2 * ((k * 7) % 5) / 4.0);
-        sim.add_particle({.position = Vec3(2.1e-3 * x + 1e-4 * (z % 2), 2.1e-3 * y,
-                                           1.1e-3 + 1.95e-3 * z),
-                          .radius = r,
-                          .material = m});
+        sim.add_particle(
+            {.position = Vec3(2.1e-3 * x + 1e-4 * (z % 2), 2.1e-3 * y, 1.1e-3 + 1.95e-3 * z),
+             .radius = r,
+             .material = m});
       }
   sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.material = m});
 }
@@ -283,12 +294,15 @@ TEST_CASE("a search whose list is not well formed is refused with its name") {
 }
 
 TEST_CASE("a thermo-mechanical run whose particles are all fixed has the conduction step") {
-  using Hot = Interaction<normal::Hertz<>, tangent::Mindlin, rolling::None,
-                          conduction::BatchelorOBrien>;
+  using Hot =
+      Interaction<normal::Hertz<>, tangent::Mindlin, rolling::None, conduction::BatchelorOBrien>;
   auto make = [](bool one_free) {
     Simulation<Sphere, search::CellList, Hot> sim;
-    const auto m = sim.add_material({.density = 2500, .young = 1e9, .poisson = 0.25,
-                                     .conductivity = 1.0, .heat_capacity = 800});
+    const auto m = sim.add_material({.density = 2500,
+                                     .young = 1e9,
+                                     .poisson = 0.25,
+                                     .conductivity = 1.0,
+                                     .heat_capacity = 800});
     for (int k = 0; k < 4; ++k)
       sim.add_particle({.position = Vec3(1.9e-3 * k, 0, 0),
                         .radius = 1e-3,
@@ -304,7 +318,8 @@ TEST_CASE("a thermo-mechanical run whose particles are all fixed has the conduct
   REQUIRE(fixed.mechanical_time_step() < 1e-3 * conduction); // stiff spheres: far below it
   CHECK_FALSE(fixed.forces_move());
   CHECK(fixed.critical_time_step() == conduction);
-  CHECK(fixed.time_step() == doctest::Approx(0.1 * std::min(conduction, fixed.thermal_time_step())));
+  CHECK(fixed.time_step() ==
+        doctest::Approx(0.1 * std::min(conduction, fixed.thermal_time_step())));
   // heat flows as it did: the hottest particle cools
   const double t3 = fixed.particles().temperature[fixed.index_of(3)];
   fixed.steps(100);
@@ -320,10 +335,10 @@ TEST_CASE("lifecycle: who leaves and who arrives at a time") {
   life.bounding_box = TimedRegion<2>{regions::Box<2>{Vec2(0, 0), Vec2(1, 1)}};
   life.sinks.push_back(TimedRegion<2>{regions::Ball<2>{Vec2(0.9, 0.9), 0.05}, 1.0, 2.0});
   life.doomed = {{0.5, 11}, {3.0, 12}, {0.2, 40}}; // 40 is still waiting to be created
-  life.pending.push_back(ParticleSpec<2>{.position = Vec2(0.5, 0.5), .radius = 0.01,
-                                         .creation_time = 0.2, .id = 30});
-  life.pending.push_back(ParticleSpec<2>{.position = Vec2(0.5, 0.6), .radius = 0.01,
-                                         .creation_time = 0.1, .id = 40});
+  life.pending.push_back(
+      ParticleSpec<2>{.position = Vec2(0.5, 0.5), .radius = 0.01, .creation_time = 0.2, .id = 30});
+  life.pending.push_back(
+      ParticleSpec<2>{.position = Vec2(0.5, 0.6), .radius = 0.01, .creation_time = 0.1, .id = 40});
   CHECK(life.active());
   // particles 10 (inside), 11 (destruction time 0.5), 12 (outside the box), 13 (in the sink)
   const std::vector<Vec2> x{Vec2(0.5, 0.5), Vec2(0.2, 0.2), Vec2(1.5, 0.5), Vec2(0.9, 0.91)};
@@ -375,8 +390,8 @@ TEST_CASE("variable properties: radii, masses and per-particle contact values") 
   }
   const std::vector<std::vector<std::uint32_t>> members{{0, 1, 2}, {0, 2}, {1}};
   VariableProperties<2> vp;
-  CHECK_FALSE(vp.add({"grow", Property::radius, Variable::time, Table({{0.0, 0.01}, {1.0, 0.02}})},
-                     1, 3));
+  CHECK_FALSE(
+      vp.add({"grow", Property::radius, Variable::time, Table({{0.0, 0.01}, {1.0, 0.02}})}, 1, 3));
   CHECK_FALSE(vp.per_particle);
   CHECK(vp.add({"slow", Property::friction, Variable::speed, Table({{0.0, 0.5}, {1.0, 0.1}}), 10},
                2, 3));

@@ -45,8 +45,13 @@ TEST_CASE("shape mass and inertia") {
 }
 
 TEST_CASE("pair properties follow the mixing rules") {
-  const Material a{.density = 1000, .young = 1e9, .poisson = 0.2, .restitution = 0.4, .friction = 0.2};
-  const Material b{.density = 1000, .young = 3e9, .poisson = 0.4, .shear = 1e9, .restitution = 0.8,
+  const Material a{
+      .density = 1000, .young = 1e9, .poisson = 0.2, .restitution = 0.4, .friction = 0.2};
+  const Material b{.density = 1000,
+                   .young = 3e9,
+                   .poisson = 0.4,
+                   .shear = 1e9,
+                   .restitution = 0.8,
                    .friction = 0.6};
   const auto p = PairProperties::mix(a, b);
   CHECK(p.young_eff == grain::test::approx(1.0 / ((1 - 0.04) / 1e9 + (1 - 0.16) / 3e9)));
@@ -57,7 +62,8 @@ TEST_CASE("pair properties follow the mixing rules") {
   CHECK(p.poisson_avg == grain::test::approx(0.3));
   // damping ratio zeta = -ln e / sqrt(ln^2 e + pi^2)
   const double l = std::log(0.6);
-  CHECK(p.damping_ratio() == grain::test::approx(-l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi)));
+  CHECK(p.damping_ratio() ==
+        grain::test::approx(-l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi)));
   const auto o = PairProperties::mix(a, b, {.restitution = 0.9, .friction = 0.1});
   CHECK(o.restitution == grain::test::approx(0.9));
   CHECK(o.friction == grain::test::approx(0.1));
@@ -67,7 +73,8 @@ TEST_CASE("bad input names the object, the value and the valid range") {
   Sim3 sim;
   auto m = sim.add_material(glass);
 
-  auto e = error_of([&] { sim.add_particle({.position = Vec3::Zero(), .radius = -1e-3, .material = m}); });
+  auto e = error_of(
+      [&] { sim.add_particle({.position = Vec3::Zero(), .radius = -1e-3, .material = m}); });
   CHECK(has(e, "sphere particle"));
   CHECK(has(e, "radius = -0.001"));
   CHECK(has(e, "(0, inf)"));
@@ -77,22 +84,26 @@ TEST_CASE("bad input names the object, the value and the valid range") {
   CHECK(has(e, "density = 0"));
   CHECK(has(e, "(0, inf)"));
 
-  e = error_of([&] { sim.add_material({.name = "rubber", .density = 1000, .young = 1e6, .poisson = 0.5}); });
+  e = error_of(
+      [&] { sim.add_material({.name = "rubber", .density = 1000, .young = 1e6, .poisson = 0.5}); });
   CHECK(has(e, "Material 'rubber'"));
   CHECK(has(e, "poisson = 0.5"));
   CHECK(has(e, "(-1, 0.5)"));
 
-  e = error_of([&] { sim.add_material({.name = "odd", .density = 1000, .young = 1e6, .poisson = -1.2}); });
+  e = error_of(
+      [&] { sim.add_material({.name = "odd", .density = 1000, .young = 1e6, .poisson = -1.2}); });
   CHECK(has(e, "poisson = -1.2"));
 
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  e = error_of([&] { sim.add_particle({.position = Vec3(0, nan, 0), .radius = 1e-3, .material = m}); });
+  e = error_of(
+      [&] { sim.add_particle({.position = Vec3(0, nan, 0), .radius = 1e-3, .material = m}); });
   CHECK(has(e, "sphere particle"));
   CHECK(has(e, "position"));
   CHECK(has(e, "nan"));
   CHECK(has(e, "finite"));
 
-  e = error_of([&] { sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = 7}); });
+  e = error_of(
+      [&] { sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = 7}); });
   CHECK(has(e, "material = 7"));
   CHECK(has(e, "[0, 1)"));
 
@@ -116,9 +127,7 @@ TEST_CASE("bad input names the object, the value and the valid range") {
   e = error_of([&] { Sim2 bad({}, Disk{.thickness = 0.0}); });
   CHECK(has(e, "Disk: thickness = 0"));
 
-  e = error_of([&] {
-    Sim3 bad({.contact = {.normal = {}, .tangent = {.stiffness = -5.0}}});
-  });
+  e = error_of([&] { Sim3 bad({.contact = {.normal = {}, .tangent = {.stiffness = -5.0}}}); });
   CHECK(has(e, "tangent::SpringDashpotSlider: stiffness = -5"));
 }
 

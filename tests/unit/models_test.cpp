@@ -1,8 +1,8 @@
 // Contact models in isolation and the composition of per-contact history.
-#include <grain/grain.hpp>
-#include <doctest/doctest.h>
 #include "../approx.hpp"
 #include <cmath>
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
 #include <numbers>
 #include <type_traits>
 
@@ -20,20 +20,21 @@ static_assert(std::is_trivially_copyable_v<HertzSDS::History<3>>);
 static_assert(std::is_trivially_copyable_v<HertzSDS::History<2>>);
 static_assert(!HertzOnly::has_torque && HertzSDS::has_torque);
 static_assert(NormalModel<normal::Hertz<>> && NormalModel<normal::LinearSpringDashpot>);
-static_assert(TangentModel<tangent::SpringDashpotSlider> && !NormalModel<tangent::SpringDashpotSlider>);
+static_assert(TangentModel<tangent::SpringDashpotSlider> &&
+              !NormalModel<tangent::SpringDashpotSlider>);
 static_assert(!TangentModel<normal::Hertz<>>);
 
 namespace {
 PairProperties pair_of(double young, double poisson, double e, double mu) {
-  const Material m{.density = 1000, .young = young, .poisson = poisson, .restitution = e,
-                   .friction = mu};
+  const Material m{
+      .density = 1000, .young = young, .poisson = poisson, .restitution = e, .friction = mu};
   return PairProperties::mix(m, m);
 }
 ContactGeometry<3> head_on(double overlap, double rate, double r = 1e-3, double m = 1e-5) {
   ContactGeometry<3> g;
   const double dist = 2 * r - overlap;
-  pair_geometry<3>(g, Vec3::Zero(), Vec3::UnitX(), dist, r, r, m, m, Vec3(rate, 0, 0),
-                   Vec3::Zero(), Vec3::Zero(), Vec3::Zero());
+  pair_geometry<3>(g, Vec3::Zero(), Vec3::UnitX(), dist, r, r, m, m, Vec3(rate, 0, 0), Vec3::Zero(),
+                   Vec3::Zero(), Vec3::Zero());
   return g;
 }
 } // namespace
@@ -55,7 +56,8 @@ TEST_CASE("Hertz: force, stiffness, energy and damping") {
   // gamma_n = -2 sqrt(5/6) beta sqrt(S_n m*), S_n = 2 E* sqrt(R* delta)
   auto gv = head_on(delta, 0.1);
   auto rv = normal::Hertz<>::force(gv, pair, {}, h);
-  const double beta = std::log(0.5) / std::sqrt(std::pow(std::log(0.5), 2) + std::pow(std::numbers::pi, 2));
+  const double beta =
+      std::log(0.5) / std::sqrt(std::pow(std::log(0.5), 2) + std::pow(std::numbers::pi, 2));
   const double sn = 2.0 * pair.young_eff * std::sqrt(g.r_eff * delta);
   const double gn = -2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(sn * gv.m_eff);
   CHECK(rv.damping == grain::test::approx(gn).epsilon(1e-12));
@@ -74,7 +76,8 @@ TEST_CASE("linear spring-dashpot: given and Hertz-equivalent stiffness") {
   const double eta = 2.0 * pair.damping_ratio() * std::sqrt(g.m_eff * 500.0);
   CHECK(r.force == grain::test::approx(500.0 * 1e-5 + eta * 0.2));
   CHECK(r.elastic_energy == grain::test::approx(0.5 * 500.0 * 1e-10));
-  CHECK(normal::LinearSpringDashpot::force(head_on(0, 0), pair, {.stiffness = 500.0}, h).force == 0.0);
+  CHECK(normal::LinearSpringDashpot::force(head_on(0, 0), pair, {.stiffness = 500.0}, h).force ==
+        0.0);
   // Hertz equivalence reproduces the bench table (pack2d disk-disk: kn = 591.4824333 N/m,
   // gn = 0.01038376737 N s/m for m* = 9.817477042e-7 kg, R* = 2.5e-4 m, Y* = 5.494505495e6 Pa)
   ContactGeometry<2> d;
@@ -100,7 +103,8 @@ TEST_CASE("spring-dashpot-slider: stick, Coulomb truncation, rotation, reverse")
   CHECK(!r.sliding);
   CHECK(r.force.isApprox(Vec3(0, -kt * 1e-6, 0)));
   // many steps: the force saturates at mu Fn and the spring is truncated there
-  for (int k = 0; k < 2000; ++k) r = T::force(g, pair, n, {}, h, dt);
+  for (int k = 0; k < 2000; ++k)
+    r = T::force(g, pair, n, {}, h, dt);
   CHECK(r.sliding);
   CHECK(r.force.norm() == grain::test::approx(0.5).epsilon(1e-12));
   CHECK(load<3>(h.spring).norm() == grain::test::approx(0.5 / kt).epsilon(1e-12));

@@ -351,7 +351,8 @@ TEST_CASE("normal models: stiffness is the tangent of the elastic force, energy 
     const auto r = at(WaltonBraun{}, prm, d);
     CHECK(r.stiffness == 1e3);
     CHECK(r.force == grain::test::approx(1e3 * d).epsilon(1e-14));
-    CHECK(r.elastic_energy == grain::test::approx(r.force * r.force / (2 * 1e3 / 0.25)).epsilon(1e-14));
+    CHECK(r.elastic_energy ==
+          grain::test::approx(r.force * r.force / (2 * 1e3 / 0.25)).epsilon(1e-14));
     CHECK(r.damping == 0.0);
   }
 }
@@ -486,7 +487,8 @@ TEST_CASE("Hertz damping policies: coefficients") {
         0.3 * std::sqrt(8 * pair.young_eff * g.m_eff * std::sqrt(g.r_eff)) * std::pow(delta, 0.25);
     CHECK(r.damping == grain::test::approx(eta).epsilon(1e-13));
     // = 2 xi sqrt(m* k(delta)) with the tangent stiffness k; = Tsuji with alpha = sqrt(6) xi
-    CHECK(r.damping == grain::test::approx(2 * 0.3 * std::sqrt(g.m_eff * r.stiffness)).epsilon(1e-13));
+    CHECK(r.damping ==
+          grain::test::approx(2 * 0.3 * std::sqrt(g.m_eff * r.stiffness)).epsilon(1e-13));
     Hertz<>::History<3> ht;
     CHECK(Hertz<>::force(g, pair, {.damping = {.alpha = std::sqrt(6.0) * 0.3}}, ht).force ==
           grain::test::approx(r.force).epsilon(1e-13));
@@ -609,8 +611,9 @@ TEST_CASE("Walton-Braun: loading, unloading, residual overlap, re-loading and ca
     const W::Params p{.reference_velocity = 1.0};
     const auto r = W::force(pair_contact<3>(1e-7, 0.25), pair, p, h);
     CHECK(h.impact_velocity == 0.25);
-    CHECK(r.stiffness ==
-          grain::test::approx(W::loading_stiffness(pair, p, 0.5 * R, 0.5 * M, 0.25)).epsilon(1e-14));
+    CHECK(
+        r.stiffness ==
+        grain::test::approx(W::loading_stiffness(pair, p, 0.5 * R, 0.5 * M, 0.25)).epsilon(1e-14));
   }
 }
 

@@ -1,7 +1,7 @@
 // Neighbour searches: same contact set as brute force, and no contact ever detected late.
-#include <grain/grain.hpp>
-#include <doctest/doctest.h>
 #include <algorithm>
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
 #include <map>
 #include <random>
 #include <set>
@@ -72,7 +72,8 @@ void fill(Sim& sim, int n, double ratio, unsigned seed, double speed) {
   } else {
     sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.material = m});
     sim.add_wall(walls::Plane{Vec3(L, L, L), -Vec3::UnitX()}, {.material = m});
-    sim.add_wall(walls::Triangle{Vec3(0, 0, L), Vec3(L, 0, L), Vec3(0, L, 0.5 * L)}, {.material = m});
+    sim.add_wall(walls::Triangle{Vec3(0, 0, L), Vec3(L, 0, L), Vec3(0, L, 0.5 * L)},
+                 {.material = m});
   }
 }
 
@@ -82,7 +83,8 @@ void check_search(int n, double ratio, unsigned seed, typename SearchT::Params s
   constexpr int D = Shape::dimension;
   Vec<D> g = Vec<D>::Zero();
   g[D - 1] = -9.81;
-  Sim sim({.time_step = 2e-5, .gravity = g, .contact = {.normal = {.stiffness = 50.0}}, .search = sp});
+  Sim sim(
+      {.time_step = 2e-5, .gravity = g, .contact = {.normal = {.stiffness = 50.0}}, .search = sp});
   fill(sim, n, ratio, seed, 0.5);
   sim.initialize();
   const auto initial = brute_contacts(sim);
@@ -123,7 +125,8 @@ TEST_CASE("searches find exactly the touching pairs, 3D polydisperse with walls"
 TEST_CASE("all three searches give the same contact set on the same configuration") {
   auto contacts = [](auto tag) {
     using SearchT = decltype(tag);
-    Simulation<Sphere, SearchT, Contact> sim({.time_step = 1e-5, .contact = {.normal = {.stiffness = 50.0}}});
+    Simulation<Sphere, SearchT, Contact> sim(
+        {.time_step = 1e-5, .contact = {.normal = {.stiffness = 50.0}}});
     fill(sim, 400, 10.0, 42, 0.0);
     sim.initialize();
     return listed_contacts(sim);
@@ -174,13 +177,16 @@ TEST_CASE("the motion does not depend on the search (rows of any length)") {
 
 TEST_CASE("cell list re-sorts particles but keeps ids and contact histories") {
   using Sim = Simulation<Disk, search::CellList, Contact>;
-  Sim sim({.time_step = 2e-5, .gravity = Vec2(0, -9.81), .contact = {.normal = {.stiffness = 50.0}},
+  Sim sim({.time_step = 2e-5,
+           .gravity = Vec2(0, -9.81),
+           .contact = {.normal = {.stiffness = 50.0}},
            .search = {.skin = 1e-5}});
   fill(sim, 200, 2.0, 11, 0.3);
   sim.initialize();
   auto ids = sim.particles().id;
   std::sort(ids.begin(), ids.end());
-  for (std::size_t k = 0; k < ids.size(); ++k) CHECK(ids[k] == static_cast<std::int64_t>(k));
+  for (std::size_t k = 0; k < ids.size(); ++k)
+    CHECK(ids[k] == static_cast<std::int64_t>(k));
   // run; after each rebuild, the tangential springs of continuing contacts are unchanged when
   // looked up by particle identity
   long rebuilds = sim.counters().rebuilds;
@@ -245,12 +251,13 @@ TEST_CASE("cell order sorts by cell and keeps the order of the particles within 
   REQUIRE(perm.size() == p.size());
   std::vector<std::uint32_t> seen(perm);
   std::sort(seen.begin(), seen.end());
-  for (std::size_t k = 0; k < seen.size(); ++k) REQUIRE(seen[k] == k); // a permutation
+  for (std::size_t k = 0; k < seen.size(); ++k)
+    REQUIRE(seen[k] == k); // a permutation
   int ties = 0;
   for (std::size_t k = 1; k < perm.size(); ++k) {
     const long a = grid.index(p.position[perm[k - 1]]), b = grid.index(p.position[perm[k]]);
     CHECK(a <= b); // by cell
-    if (a == b) { // stable within a cell
+    if (a == b) {  // stable within a cell
       CHECK(perm[k - 1] < perm[k]);
       ++ties;
     }

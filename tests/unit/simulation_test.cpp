@@ -1,8 +1,8 @@
 // The solution loop: free flight, determinism across thread counts, walls that move.
-#include <grain/grain.hpp>
-#include <doctest/doctest.h>
 #include "../approx.hpp"
 #include <cstring>
+#include <doctest/doctest.h>
+#include <grain/grain.hpp>
 #include <random>
 #ifdef _OPENMP
 #include <omp.h>
@@ -72,7 +72,8 @@ std::vector<double> state_bits(const Sim& sim) {
     if constexpr (Sim::dimension == 2)
       out.push_back(p.omega[i]);
     else
-      for (int d = 0; d < 3; ++d) out.push_back(p.omega[i][d]);
+      for (int d = 0; d < 3; ++d)
+        out.push_back(p.omega[i][d]);
     if constexpr (Sim::thermal) {
       out.push_back(p.temperature[i]);
       out.push_back(p.heat_rate[i]);
@@ -96,9 +97,11 @@ TEST_CASE("run(duration): the number of steps is the quotient rounded up, roundi
 }
 
 TEST_CASE("free flight under gravity is exact with velocity Verlet") {
-  Simulation<Sphere, search::CellList, Contact3> sim({.time_step = 1e-5, .gravity = Vec3(0, 0, -9.81)});
+  Simulation<Sphere, search::CellList, Contact3> sim(
+      {.time_step = 1e-5, .gravity = Vec3(0, 0, -9.81)});
   auto m = sim.add_material(soft);
-  sim.add_particle({.position = Vec3(0, 0, 1), .radius = 1e-3, .material = m, .velocity = Vec3(1, 0, 2)});
+  sim.add_particle(
+      {.position = Vec3(0, 0, 1), .radius = 1e-3, .material = m, .velocity = Vec3(1, 0, 2)});
   sim.steps(10000);
   const double t = sim.time();
   CHECK(t == grain::test::approx(0.1));
@@ -113,11 +116,17 @@ TEST_CASE("global damping decays the velocity exponentially") {
   Simulation<Disk, search::AllPairs, Contact2, integrate::VelocityVerlet> sim(
       {.time_step = 1e-5, .damping_translational = 1e-4, .damping_rotational = 1e-9});
   auto m = sim.add_material(soft);
-  sim.add_particle({.position = Vec2::Zero(), .radius = 1e-3, .material = m, .velocity = Vec2(1, 0), .omega = 10.0});
+  sim.add_particle({.position = Vec2::Zero(),
+                    .radius = 1e-3,
+                    .material = m,
+                    .velocity = Vec2(1, 0),
+                    .omega = 10.0});
   sim.steps(1000);
   const auto& p = sim.particles();
-  CHECK(p.velocity[0].x() == grain::test::approx(std::exp(-1e-4 * sim.time() / p.mass[0])).epsilon(1e-6));
-  CHECK(p.omega[0] == grain::test::approx(10.0 * std::exp(-1e-9 * sim.time() / p.inertia[0])).epsilon(1e-6));
+  CHECK(p.velocity[0].x() ==
+        grain::test::approx(std::exp(-1e-4 * sim.time() / p.mass[0])).epsilon(1e-6));
+  CHECK(p.omega[0] ==
+        grain::test::approx(10.0 * std::exp(-1e-9 * sim.time() / p.inertia[0])).epsilon(1e-6));
 }
 
 // A run of n steps without observers leaves the second half kick of each step but the last (and
@@ -169,14 +178,16 @@ TEST_CASE("a run of n steps equals n single steps bit for bit") {
 TEST_CASE("results are bit-identical with 1, 2 and 3 threads") {
   auto run3 = [](int threads) {
     omp_set_num_threads(threads);
-    Simulation<Sphere, search::CellList, Contact3> sim({.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
+    Simulation<Sphere, search::CellList, Contact3> sim(
+        {.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
     settle_box(sim, 1200, 3);
     sim.steps(300);
     return state_bits(sim);
   };
   auto run2 = [](int threads) {
     omp_set_num_threads(threads);
-    Simulation<Disk, search::CellList, Contact2> sim({.time_step = 2e-6, .gravity = Vec2(0, -9.81)});
+    Simulation<Disk, search::CellList, Contact2> sim(
+        {.time_step = 2e-6, .gravity = Vec2(0, -9.81)});
     settle_box(sim, 1200, 4);
     sim.steps(300);
     return state_bits(sim);
@@ -232,7 +243,8 @@ TEST_CASE("a moving wall pushes a particle; a rotating drum drags it") {
       {.time_step = 1e-6, .contact = {.normal = {.stiffness = 1e3}}});
   auto m = sim.add_material({.density = 2500, .young = 1e7, .poisson = 0.3, .restitution = 1.0});
   sim.add_particle({.position = Vec2(0.01, 0), .radius = 1e-3, .material = m});
-  sim.add_wall(walls::Segment{Vec2(0, -0.01), Vec2(0, 0.01)}, {.material = m, .velocity = Vec2(0.1, 0)});
+  sim.add_wall(walls::Segment{Vec2(0, -0.01), Vec2(0, 0.01)},
+               {.material = m, .velocity = Vec2(0.1, 0)});
   sim.run(0.1);
   CHECK(sim.particles().velocity[0].x() == grain::test::approx(0.2).epsilon(1e-6));
 
@@ -247,9 +259,14 @@ TEST_CASE("a moving wall pushes a particle; a rotating drum drags it") {
 }
 
 TEST_CASE("a fixed particle keeps its velocity") {
-  Simulation<Sphere, search::AllPairs, Contact3> sim({.time_step = 1e-6, .gravity = Vec3(0, 0, -9.81)});
+  Simulation<Sphere, search::AllPairs, Contact3> sim(
+      {.time_step = 1e-6, .gravity = Vec3(0, 0, -9.81)});
   auto m = sim.add_material(soft);
-  sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = m, .velocity = Vec3(0, 0.1, 0), .fixed = true});
+  sim.add_particle({.position = Vec3::Zero(),
+                    .radius = 1e-3,
+                    .material = m,
+                    .velocity = Vec3(0, 0.1, 0),
+                    .fixed = true});
   sim.add_particle({.position = Vec3(0, 0, 2.0005e-3), .radius = 1e-3, .material = m});
   sim.steps(2000);
   const auto i = sim.index_of(0);
@@ -268,21 +285,26 @@ TEST_CASE("each integrator's free-fall update is the scheme's closed form") {
     using I = decltype(integrator);
     Simulation<Disk, search::AllPairs, Contact2, I> sim({.time_step = dt, .gravity = Vec2(0, g)});
     auto m = sim.add_material(soft);
-    sim.add_particle({.position = Vec2::Zero(), .radius = 1e-3, .material = m, .velocity = Vec2(0, v0)});
+    sim.add_particle(
+        {.position = Vec2::Zero(), .radius = 1e-3, .material = m, .velocity = Vec2(0, v0)});
     sim.steps(n);
     return sim.particles().position[0].y();
   };
   const double t = n * dt;
-  CHECK(fall(integrate::ForwardEuler{}) == grain::test::approx(n * v0 * dt + g * dt * dt * n * (n - 1) / 2.0).epsilon(1e-11));
-  CHECK(fall(integrate::SymplecticEuler{}) == grain::test::approx(n * v0 * dt + g * dt * dt * n * (n + 1) / 2.0).epsilon(1e-11));
+  CHECK(fall(integrate::ForwardEuler{}) ==
+        grain::test::approx(n * v0 * dt + g * dt * dt * n * (n - 1) / 2.0).epsilon(1e-11));
+  CHECK(fall(integrate::SymplecticEuler{}) ==
+        grain::test::approx(n * v0 * dt + g * dt * dt * n * (n + 1) / 2.0).epsilon(1e-11));
   CHECK(fall(integrate::Taylor2{}) == grain::test::approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
-  CHECK(fall(integrate::VelocityVerlet{}) == grain::test::approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
+  CHECK(fall(integrate::VelocityVerlet{}) ==
+        grain::test::approx(v0 * t + 0.5 * g * t * t).epsilon(1e-11));
 }
 
 TEST_CASE("rotation: a spinning sphere's orientation turns by omega t") {
   Simulation<Sphere, search::AllPairs, Contact3> sim({.time_step = 5e-5});
   auto m = sim.add_material(soft);
-  sim.add_particle({.position = Vec3::Zero(), .radius = 1e-3, .material = m, .omega = Vec3(0, 0, 2.0)});
+  sim.add_particle(
+      {.position = Vec3::Zero(), .radius = 1e-3, .material = m, .omega = Vec3(0, 0, 2.0)});
   sim.steps(2000);
   const Eigen::AngleAxisd aa(sim.particles().orientation[0]);
   CHECK(aa.angle() == grain::test::approx(0.2).epsilon(1e-10));

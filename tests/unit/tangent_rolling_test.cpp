@@ -1,6 +1,10 @@
 // Tangential-force and rolling-resistance models in isolation: history layout, zero force out of
 // contact, action and reaction, dissipation over closed cycles, the wall as the large-radius limit
 // of a particle, the closed forms of each model, static and dynamic friction, parameter checks.
+#include "../approx.hpp"
+#include <cmath>
+#include <doctest/doctest.h>
+#include <functional>
 #include <grain/grain.hpp>
 #include <grain/models/rolling/constant.hpp>
 #include <grain/models/rolling/epsd.hpp>
@@ -15,10 +19,6 @@
 #include <grain/models/tangent/spring_slider.hpp>
 #include <grain/models/tangent/tsuji.hpp>
 #include <grain/models/tangent/zheng_zhu_yu.hpp>
-#include <doctest/doctest.h>
-#include "../approx.hpp"
-#include <cmath>
-#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <numbers>
@@ -485,7 +485,8 @@ TEST_CASE("spring-dashpot-slider: damping from the tangential restitution (Deen 
   // given damping wins; default: the normal damping ratio eta_n sqrt(k_t/k_n)
   CHECK(eta_of(g3, {.stiffness = k, .damping = 0.7, .restitution = 0.5}) ==
         grain::test::approx(0.7).epsilon(1e-9));
-  CHECK(eta_of(g3, {.stiffness = k}) == grain::test::approx(0.3 * std::sqrt(k / 2000.0)).epsilon(1e-9));
+  CHECK(eta_of(g3, {.stiffness = k}) ==
+        grain::test::approx(0.3 * std::sqrt(k / 2000.0)).epsilon(1e-9));
   // the spring integrates the slip velocity that moved the contact; the dashpot sees the
   // tangential velocity of the forces (they differ under velocity Verlet)
   {
@@ -521,7 +522,8 @@ TEST_CASE("Mindlin, Di Renzo-Di Maio and Tsuji: stiffness and damping") {
         grain::test::approx(-km * v * dt).epsilon(1e-12));
   // default damping: the normal damping ratio (LIGGGHTS: gamma_t = gamma_n sqrt(S_t/S_n))
   CHECK(step(tangent::Mindlin{}, tangent::Mindlin::Params{}) ==
-        grain::test::approx(-km * v * dt - n.damping * std::sqrt(km / n.stiffness) * v).epsilon(1e-12));
+        grain::test::approx(-km * v * dt - n.damping * std::sqrt(km / n.stiffness) * v)
+            .epsilon(1e-12));
   // Di Renzo-Di Maio: 16/3 G* a = 2/3 of Mindlin
   CHECK(step(tangent::DiRenzoDiMaio{}, tangent::DiRenzoDiMaio::Params{}) ==
         grain::test::approx(-2.0 / 3.0 * km * v * dt).epsilon(1e-12));
@@ -595,9 +597,9 @@ TEST_CASE_TEMPLATE("Langston-Tuzun-Heyes and Zheng-Zhu-Yu: Mindlin slope, satura
   CHECK(load<3>(h.spring).norm() < dmax);
   // the stored energy is the integral of the spring force: F_s (x + 2/5 d ((1 - x/d)^(5/2) - 1))
   const double fs = mu_s * n.force;
-  CHECK(
-      r.elastic_energy ==
-      grain::test::approx(fs * (xd + 0.4 * dmax * (std::pow(1 - xd / dmax, 2.5) - 1))).epsilon(1e-12));
+  CHECK(r.elastic_energy ==
+        grain::test::approx(fs * (xd + 0.4 * dmax * (std::pow(1 - xd / dmax, 2.5) - 1)))
+            .epsilon(1e-12));
 }
 
 TEST_CASE("spring-slider: sticking against mu_s, sliding at mu_d, re-sticking on reversal") {

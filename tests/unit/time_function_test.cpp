@@ -31,9 +31,9 @@ constexpr double pi = std::numbers::pi;
 struct TempFile {
   std::filesystem::path path;
   explicit TempFile(const std::string& text) {
-    static std::mt19937_64 rng(std::random_device{}() ^
-                               static_cast<std::uint64_t>(
-                                   std::chrono::steady_clock::now().time_since_epoch().count()));
+    static std::mt19937_64 rng(
+        std::random_device{}() ^
+        static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()));
     static int counter = 0;
     path = std::filesystem::temp_directory_path() /
            ("grain_table_" + std::to_string(rng()) + "_" + std::to_string(++counter) + ".txt");
@@ -177,8 +177,10 @@ TEST_CASE("table: interpolation at and between points, end values held outside")
   CHECK(t(2.5) == grain::test::approx(5.0).epsilon(1e-15));
   CHECK(t(3.5) == grain::test::approx(2.5).epsilon(1e-15));
   // end values outside, never NaN, even far away and at infinity
-  for (double x : {-1e-12, -1.0, -1e300, -inf}) CHECK(t(x) == 10.0);
-  for (double x : {4.0 + 1e-12, 5.0, 1e300, inf}) CHECK(t(x) == 5.0);
+  for (double x : {-1e-12, -1.0, -1e300, -inf})
+    CHECK(t(x) == 10.0);
+  for (double x : {4.0 + 1e-12, 5.0, 1e300, inf})
+    CHECK(t(x) == 5.0);
   // segment lookup
   CHECK(t.segment(-1.0) == 0);
   CHECK(t.segment(0.0) == 0);
@@ -229,7 +231,8 @@ TEST_CASE("table: the cursor gives the same values as the search, in any order")
   // through a time function
   const auto f = TimeFunction::table(t);
   hint = 0;
-  for (int k = 0; k < 100; ++k) CHECK(f(k * 0.05, hint) == f(k * 0.05));
+  for (int k = 0; k < 100; ++k)
+    CHECK(f(k * 0.05, hint) == f(k * 0.05));
 }
 
 TEST_CASE("table: inline columns, pairs and a file give the same table") {
@@ -253,7 +256,8 @@ TEST_CASE("table: inline columns, pairs and a file give the same table") {
   CHECK(pairs.label() == "Table 'pairs'");
   CHECK(from_vector.label() == "Table");
   CHECK(from_file.label() == "Table from file '" + file.name() + "'");
-  for (double x : {-1.0, 0.0, 0.2, 0.5, 1.0, 2.0, 3.0}) CHECK(from_file(x) == cols(x));
+  for (double x : {-1.0, 0.0, 0.2, 0.5, 1.0, 2.0, 3.0})
+    CHECK(from_file(x) == cols(x));
   CHECK(from_file(0.25) == grain::test::approx(2.0).epsilon(1e-15));
   CHECK(from_file(1.25) == grain::test::approx(1.0).epsilon(1e-15));
 
@@ -377,7 +381,10 @@ TEST_CASE("time function: invalid parameters name the function, the value and th
   CHECK(has(e, "phase = inf"));
   e = error_of([] { (void)TimeFunction::constant(qnan); });
   CHECK(has(e, "TimeFunction::constant: value = nan"));
-  e = error_of([] { TimeFunction f = inf; (void)f; });
+  e = error_of([] {
+    TimeFunction f = inf;
+    (void)f;
+  });
   CHECK(has(e, "TimeFunction::constant: value = inf"));
   e = error_of([] { (void)TimeFunction::linear(0.0, inf); });
   CHECK(has(e, "TimeFunction::linear: slope = inf is invalid; valid range: a finite number"));

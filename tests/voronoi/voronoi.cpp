@@ -1,7 +1,7 @@
 // Cell radii from Voronoi and power diagrams and 3D porosities (grain/thermal/voronoi.hpp, qhull):
 // exact lattice values, boundaries, walls, order independence.
-#include <doctest/doctest.h>
 #include "../lattices.hpp"
+#include <doctest/doctest.h>
 #include <grain/thermal/voronoi.hpp>
 
 #include <algorithm>

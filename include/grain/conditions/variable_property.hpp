@@ -5,14 +5,15 @@
 ///
 /// | property | unit | valid values | recomputed with it |
 /// |---|---|---|---|
-/// | `radius` | m | > 0 | mass (density kept), inertia, volume, weight, thermal inertia m c,
-/// neighbour list, contact constants | | `density` | kg/m^3 | > 0 | mass, inertia, weight, thermal
-/// inertia m c | | `heat_capacity` | J/(kg K) | > 0 | thermal inertia m c | | `young` | Pa | > 0 |
-/// contact constants (E*, G* with the shear modulus derived from E and nu) | | `poisson` | - | (-1,
-/// 0.5) | contact constants | | `restitution` | - | (0, 1] | contact constants (damping) | |
-/// `friction` | - | >= 0 | contact constants (sliding and static friction) | | `rolling_friction` |
-/// - | >= 0 | contact constants | | `conductivity` | W/(m K) | >= 0 | contact constants
-/// (conductance) |
+/// | `radius` | m | > 0 | mass (density kept), inertia, volume, weight, m c, list, contacts |
+/// | `density` | kg/m^3 | > 0 | mass, inertia, weight, thermal inertia m c |
+/// | `heat_capacity` | J/(kg K) | > 0 | thermal inertia m c |
+/// | `young` | Pa | > 0 | contact constants (E*, G* with G derived from E and nu) |
+/// | `poisson` | - | (-1, 0.5) | contact constants |
+/// | `restitution` | - | (0, 1] | contact constants (damping) |
+/// | `friction` | - | >= 0 | contact constants (sliding and static friction) |
+/// | `rolling_friction` | - | >= 0 | contact constants |
+/// | `conductivity` | W/(m K) | >= 0 | contact constants (conductance) |
 ///
 /// | variable | unit |
 /// |---|---|

@@ -40,15 +40,15 @@ struct ContactGeometry {
   double distance = 0.0; ///< centre distance (pair) or centre-to-surface distance (wall) [m]
   Vec<D> point;          ///< contact point [m]
   Vec<D> arm_i, arm_j;
-  Vec<D> velocity;                ///< relative velocity at the contact point [m/s]
-  double normal_velocity = 0.0;   ///< velocity . normal [m/s], > 0 approaching
-  Vec<D> tangential_velocity;     ///< velocity - normal_velocity * normal [m/s]
-  Vec<D> slip_velocity;           ///< tangential velocity that moved the contact [m/s]
-  Angular<D> omega_rel;           ///< w_i - w_j (wall: w_i - w_wall) [rad/s]
-  Angular<D> slip_omega_rel;      ///< w_i - w_j that turned the contact over the last step
+  Vec<D> velocity;                       ///< relative velocity at the contact point [m/s]
+  double normal_velocity = 0.0;          ///< velocity . normal [m/s], > 0 approaching
+  Vec<D> tangential_velocity;            ///< velocity - normal_velocity * normal [m/s]
+  Vec<D> slip_velocity;                  ///< tangential velocity that moved the contact [m/s]
+  Angular<D> omega_rel;                  ///< w_i - w_j (wall: w_i - w_wall) [rad/s]
+  Angular<D> slip_omega_rel;             ///< w_i - w_j that turned the contact over the last step
   double radius_i = 0.0, radius_j = 0.0; ///< radius_j is infinite for a flat wall [m]
-  double r_eff = 0.0;    ///< effective radius R* [m]
-  double m_eff = 0.0;    ///< effective mass m* [kg]
+  double r_eff = 0.0;                    ///< effective radius R* [m]
+  double m_eff = 0.0;                    ///< effective mass m* [kg]
   bool wall = false;
 };
 

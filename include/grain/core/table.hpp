@@ -90,8 +90,7 @@ public:
   static Table from_file(const std::filesystem::path& path) {
     const std::string label = "Table from file '" + path.string() + "'";
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-      throw InputError(label + ": the file does not exist");
+    if (!std::filesystem::exists(path, ec)) throw InputError(label + ": the file does not exist");
     if (std::filesystem::is_directory(path, ec))
       throw InputError(label + ": the path is a directory, not a file");
     std::ifstream in(path);

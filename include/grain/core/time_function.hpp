@@ -103,8 +103,7 @@ public:
   }
   /// The same with a table shared by several functions.
   static TimeFunction table(std::shared_ptr<const Table> t) {
-    if (!t)
-      throw InputError("TimeFunction::table: table = null is invalid; valid range: a Table");
+    if (!t) throw InputError("TimeFunction::table: table = null is invalid; valid range: a Table");
     detail::require_given(*t, "TimeFunction::table", "table", "the table of the function");
     TimeFunction f;
     f.kind_ = Kind::table;
@@ -116,12 +115,12 @@ public:
   /// (-inf for t_begin, +inf for t_end); t_begin <= t_end.
   [[nodiscard]] TimeFunction active(double t_begin, double t_end) const {
     const std::string obj = std::string("TimeFunction (") + kind_name(kind_) + ")::active";
-    detail::require(!std::isnan(t_begin) && t_begin < std::numeric_limits<double>::infinity(),
-                    obj, "t_begin", t_begin, "[-inf, inf)");
+    detail::require(!std::isnan(t_begin) && t_begin < std::numeric_limits<double>::infinity(), obj,
+                    "t_begin", t_begin, "[-inf, inf)");
     if (std::isnan(t_end) || t_end < t_begin || t_end == -std::numeric_limits<double>::infinity())
       throw InputError(obj + ": t_end = " + detail::to_text(t_end) +
-                       " is invalid; valid range: [t_begin, inf] = [" +
-                       detail::to_text(t_begin) + ", inf]");
+                       " is invalid; valid range: [t_begin, inf] = [" + detail::to_text(t_begin) +
+                       ", inf]");
     TimeFunction f = *this;
     f.t_begin_ = t_begin;
     f.t_end_ = t_end;
@@ -142,10 +141,14 @@ public:
   /// f(t), ignoring the activity interval.
   double value(double t) const noexcept {
     switch (kind_) {
-    case Kind::constant: return a_;
-    case Kind::linear: return a_ + b_ * (t - t0_);
-    case Kind::oscillatory: return a_ + b_ * std::sin(omega_ * (t - t0_) + phase_);
-    case Kind::table: return (*table_)(t);
+    case Kind::constant:
+      return a_;
+    case Kind::linear:
+      return a_ + b_ * (t - t0_);
+    case Kind::oscillatory:
+      return a_ + b_ * std::sin(omega_ * (t - t0_) + phase_);
+    case Kind::table:
+      return (*table_)(t);
     }
     return a_;
   }
@@ -170,8 +173,12 @@ public:
     using detail::to_text;
     std::string s;
     switch (kind_) {
-    case Kind::constant: s = to_text(a_); break;
-    case Kind::linear: s = to_text(a_) + " + " + to_text(b_) + " (t - " + to_text(t0_) + ")"; break;
+    case Kind::constant:
+      s = to_text(a_);
+      break;
+    case Kind::linear:
+      s = to_text(a_) + " + " + to_text(b_) + " (t - " + to_text(t0_) + ")";
+      break;
     case Kind::oscillatory:
       s = to_text(a_) + " + " + to_text(b_) + " sin(2 pi (t - " + to_text(t0_) + ") / " +
           to_text(period_) + " + " + to_text(phase_) + ")";
@@ -187,10 +194,14 @@ public:
 
   static const char* kind_name(Kind k) noexcept {
     switch (k) {
-    case Kind::constant: return "constant";
-    case Kind::linear: return "linear";
-    case Kind::oscillatory: return "oscillatory";
-    case Kind::table: return "table";
+    case Kind::constant:
+      return "constant";
+    case Kind::linear:
+      return "linear";
+    case Kind::oscillatory:
+      return "oscillatory";
+    case Kind::table:
+      return "table";
     }
     return "?";
   }
@@ -224,23 +235,22 @@ public:
   VectorTimeFunction() = default;
   /// A constant vector.
   VectorTimeFunction(const Vec<D>& constant) {
-    for (int i = 0; i < D; ++i) f_[i] = TimeFunction::constant(constant[i]);
+    for (int i = 0; i < D; ++i)
+      f_[i] = TimeFunction::constant(constant[i]);
   }
   /// One function per component.
   explicit VectorTimeFunction(std::array<TimeFunction, D> components) : f_(std::move(components)) {}
-  VectorTimeFunction(TimeFunction x, TimeFunction y)
-    requires(D == 2)
+  VectorTimeFunction(TimeFunction x, TimeFunction y) requires(D == 2)
       : f_{std::move(x), std::move(y)} {}
-  VectorTimeFunction(TimeFunction x, TimeFunction y, TimeFunction z)
-    requires(D == 3)
+  VectorTimeFunction(TimeFunction x, TimeFunction y, TimeFunction z) requires(D == 3)
       : f_{std::move(x), std::move(y), std::move(z)} {}
 
   /// direction / |direction| times `magnitude(t)` (a signed magnitude). The direction must be
   /// finite and non-zero.
   static VectorTimeFunction along(const Vec<D>& direction, TimeFunction magnitude) {
     const double n = direction.norm();
-    detail::require(all_finite(direction) && n > 0.0, "VectorTimeFunction::along", "|direction|",
-                    n, "(0, inf), finite components");
+    detail::require(all_finite(direction) && n > 0.0, "VectorTimeFunction::along", "|direction|", n,
+                    "(0, inf), finite components");
     VectorTimeFunction v;
     v.along_ = true;
     v.direction_ = direction / n;
@@ -251,7 +261,8 @@ public:
   /// A copy whose functions are all active only for t_begin <= t <= t_end [s].
   [[nodiscard]] VectorTimeFunction active(double t_begin, double t_end) const {
     VectorTimeFunction v = *this;
-    for (auto& f : v.f_) f = f.active(t_begin, t_end);
+    for (auto& f : v.f_)
+      f = f.active(t_begin, t_end);
     return v;
   }
 
@@ -272,7 +283,8 @@ public:
   Vec<D> operator()(double t) const noexcept {
     if (along_) return direction_ * f_[0](t);
     Vec<D> v;
-    for (int i = 0; i < D; ++i) v[i] = f_[i](t);
+    for (int i = 0; i < D; ++i)
+      v[i] = f_[i](t);
     return v;
   }
 
@@ -280,7 +292,8 @@ public:
   Vec<D> value(double t) const noexcept {
     if (along_) return direction_ * f_[0].value(t);
     Vec<D> v;
-    for (int i = 0; i < D; ++i) v[i] = f_[i].value(t);
+    for (int i = 0; i < D; ++i)
+      v[i] = f_[i].value(t);
     return v;
   }
 

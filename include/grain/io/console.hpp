@@ -63,7 +63,8 @@ std::string describe_contact() {
   hana::for_each(models, [&](auto t) {
     using M = typename decltype(t)::type;
     const std::string name = M::name;
-    if (k == 0 || name != "none") out += std::string(out.empty() ? "" : ", ") + slots[k] + " " + name;
+    if (k == 0 || name != "none")
+      out += std::string(out.empty() ? "" : ", ") + slots[k] + " " + name;
     ++k;
   });
   return out;
@@ -127,9 +128,9 @@ struct Summary {
     // run() sets an end time; steps(n) does not
     char span[160];
     if (sim.end_time() > sim.time())
-      std::snprintf(span, sizeof span, "t = %.6g s -> %.6g s (%ld steps)", sim.time(),
-                    sim.end_time(),
-                    static_cast<long>(std::llround((sim.end_time() - sim.time()) / sim.time_step())));
+      std::snprintf(
+          span, sizeof span, "t = %.6g s -> %.6g s (%ld steps)", sim.time(), sim.end_time(),
+          static_cast<long>(std::llround((sim.end_time() - sim.time()) / sim.time_step())));
     else
       std::snprintf(span, sizeof span, "t = %.6g s", sim.time());
     std::fprintf(out,
@@ -162,13 +163,14 @@ struct Summary {
     const double stepping = sim.counters().wall_seconds - wall0;
     const double ps = sim.counters().particle_steps - ps0;
     const auto [pp, pw] = sim.contact_counts();
-    std::fprintf(out,
-                 "grain: finished at t = %.6g s after %ld steps; wall time %.3f s (%.3f s in steps, "
-                 "%ld neighbour rebuilds in all)\n"
-                 "       %.4g particle-steps per second; contacts: %zu particle-particle, %zu "
-                 "particle-wall; kinetic energy %.6g J\n",
-                 sim.time(), sim.counters().steps - steps0, wall, stepping, sim.counters().rebuilds,
-                 stepping > 0 ? ps / stepping : 0.0, pp, pw, sim.kinetic_energy());
+    std::fprintf(
+        out,
+        "grain: finished at t = %.6g s after %ld steps; wall time %.3f s (%.3f s in steps, "
+        "%ld neighbour rebuilds in all)\n"
+        "       %.4g particle-steps per second; contacts: %zu particle-particle, %zu "
+        "particle-wall; kinetic energy %.6g J\n",
+        sim.time(), sim.counters().steps - steps0, wall, stepping, sim.counters().rebuilds,
+        stepping > 0 ? ps / stepping : 0.0, pp, pw, sim.kinetic_energy());
     const std::size_t removed = sim.removed_ids().size();
     if (removed > 0 || sim.inactive_count() > 0)
       std::fprintf(out,
@@ -221,9 +223,8 @@ private:
     if (span > 0) {
       const double frac = std::clamp((sim.time() - t0) / span, 0.0, 1.0);
       const double left = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
-      std::fprintf(out, "  t = %.6g s (%5.1f %%), step %ld, elapsed %s, time left %s\n",
-                   sim.time(), 100.0 * frac, sim.step_count(),
-                   detail::duration_text(elapsed).c_str(),
+      std::fprintf(out, "  t = %.6g s (%5.1f %%), step %ld, elapsed %s, time left %s\n", sim.time(),
+                   100.0 * frac, sim.step_count(), detail::duration_text(elapsed).c_str(),
                    frac > 0 ? detail::duration_text(left).c_str() : "?");
     } else {
       std::fprintf(out, "  t = %.6g s, step %ld, elapsed %s\n", sim.time(), sim.step_count(),
@@ -384,7 +385,8 @@ struct Print {
     for (std::size_t k = 0; k < names.size(); ++k)
       widths_.push_back(std::max(names[k].size(), k == 1 ? std::size_t{9} : numeric));
     std::string line;
-    for (std::size_t k = 0; k < names.size(); ++k) append(line, names[k], k);
+    for (std::size_t k = 0; k < names.size(); ++k)
+      append(line, names[k], k);
     emit(line);
     started_ = true;
   }
@@ -395,14 +397,14 @@ struct Print {
     cells_.clear();
     detail::values_of_all(columns, sim, cells_);
     if (cells_.size() + 2 != widths_.size())
-      throw std::logic_error("grain::io::print: the columns gave " +
-                             std::to_string(cells_.size()) + " values for " +
-                             std::to_string(widths_.size() - 2) +
+      throw std::logic_error("grain::io::print: the columns gave " + std::to_string(cells_.size()) +
+                             " values for " + std::to_string(widths_.size() - 2) +
                              " names; a column set must give one value per name");
     std::string line;
     append(line, number(sim.time()), 0);
     append(line, std::to_string(sim.step_count()), 1);
-    for (std::size_t k = 0; k < cells_.size(); ++k) append(line, number(cells_[k]), k + 2);
+    for (std::size_t k = 0; k < cells_.size(); ++k)
+      append(line, number(cells_[k]), k + 2);
     emit(line);
   }
 
@@ -436,20 +438,19 @@ private:
 
 /// print(columns...): aligned text lines on stdout (use with io::every or io::every_steps).
 template <class... Columns>
-  requires(detail::column_like<Columns> && ...)
-Print<Columns...> print(Columns... columns) {
+requires(detail::column_like<Columns>&&...) Print<Columns...> print(Columns... columns) {
   return {stdout, {}, {std::move(columns)...}};
 }
 /// print(out, columns...): aligned text lines on a stream (stdout, stderr, a FILE*).
 template <class... Columns>
-  requires(detail::column_like<Columns> && ...)
-Print<Columns...> print(std::FILE* out, Columns... columns) {
+requires(detail::column_like<Columns>&&...) Print<Columns...> print(std::FILE* out,
+                                                                    Columns... columns) {
   return {out, {}, {std::move(columns)...}};
 }
 /// print(path, columns...): aligned text lines in a text file (made with its folders).
 template <class... Columns>
-  requires(detail::column_like<Columns> && ...)
-Print<Columns...> print(std::string path, Columns... columns) {
+requires(detail::column_like<Columns>&&...) Print<Columns...> print(std::string path,
+                                                                    Columns... columns) {
   if (path.empty())
     throw InputError("grain::io::print: path = \"\" is invalid; valid: a file name (or give a "
                      "FILE* such as stdout)");

@@ -131,9 +131,10 @@ void column_names(const C& c, const Sim& sim, std::vector<std::string>& out) {
   if constexpr (requires { c.names(sim, out); }) {
     c.names(sim, out);
   } else {
-    static_assert(requires { c.name; }, "grain::io: a column must be io::column(name, f) or a "
-                                        "column set with names(sim, names) and values(sim, "
-                                        "values)");
+    static_assert(
+        requires { c.name; }, "grain::io: a column must be io::column(name, f) or a "
+                              "column set with names(sim, names) and values(sim, "
+                              "values)");
     out.push_back(c.name);
   }
 }
@@ -169,7 +170,8 @@ inline void write_number(std::ostream& o, double v) {
 inline std::string quoted(const std::string& s) {
   if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
   std::string q = "\"";
-  for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  for (char ch : s)
+    q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
   return q + "\"";
 }
 
@@ -185,10 +187,10 @@ constexpr int components_of() {
   if constexpr (std::is_arithmetic_v<T>) {
     return 1;
   } else {
-    static_assert(requires { T::RowsAtCompileTime; } && T::ColsAtCompileTime == 1 &&
-                      T::RowsAtCompileTime > 0,
-                  "grain::io::quantity: f(sim, index) must return a number or a fixed-size "
-                  "Eigen column vector (e.g. grain::Vec<D>)");
+    static_assert(
+        requires { T::RowsAtCompileTime; } && T::ColsAtCompileTime == 1 && T::RowsAtCompileTime > 0,
+        "grain::io::quantity: f(sim, index) must return a number or a fixed-size "
+        "Eigen column vector (e.g. grain::Vec<D>)");
     return T::RowsAtCompileTime;
   }
 }
@@ -200,7 +202,8 @@ void append_value(const T& v, std::vector<double>& out) {
     out.push_back(static_cast<double>(v));
   } else {
     const Eigen::Matrix<double, T::RowsAtCompileTime, 1> e = v;
-    for (int k = 0; k < T::RowsAtCompileTime; ++k) out.push_back(e[k]);
+    for (int k = 0; k < T::RowsAtCompileTime; ++k)
+      out.push_back(e[k]);
   }
 }
 
@@ -211,13 +214,15 @@ inline void component_bases(const std::string& symbol, int n, std::vector<std::s
     out.push_back(symbol);
     return;
   }
-  for (int k = 0; k < n; ++k) out.push_back(symbol + (k < 3 ? axes[k] : std::to_string(k)));
+  for (int k = 0; k < n; ++k)
+    out.push_back(symbol + (k < 3 ? axes[k] : std::to_string(k)));
 }
 
 template <class Sim>
 std::array<double, 3> position_of(const Sim& sim, std::size_t i) {
   std::array<double, 3> a{0.0, 0.0, 0.0};
-  for (int d = 0; d < Sim::dimension; ++d) a[static_cast<std::size_t>(d)] = sim.particles().position[i][d];
+  for (int d = 0; d < Sim::dimension; ++d)
+    a[static_cast<std::size_t>(d)] = sim.particles().position[i][d];
   return a;
 }
 
@@ -230,7 +235,9 @@ struct Position {
   static constexpr const char* unit = "m";
   static constexpr bool thermal = false;
   template <class Sim>
-  static auto get(const Sim& s, std::size_t i) { return s.particles().position[i]; }
+  static auto get(const Sim& s, std::size_t i) {
+    return s.particles().position[i];
+  }
 };
 /// Position minus a reference position kept by the column set.
 struct Displacement {
@@ -238,21 +245,27 @@ struct Displacement {
   static constexpr const char* unit = "m";
   static constexpr bool thermal = false;
   template <class Sim>
-  static auto get(const Sim& s, std::size_t i) { return s.particles().position[i]; }
+  static auto get(const Sim& s, std::size_t i) {
+    return s.particles().position[i];
+  }
 };
 struct Velocity {
   static constexpr const char* symbol = "v";
   static constexpr const char* unit = "m/s";
   static constexpr bool thermal = false;
   template <class Sim>
-  static auto get(const Sim& s, std::size_t i) { return s.particles().velocity[i]; }
+  static auto get(const Sim& s, std::size_t i) {
+    return s.particles().velocity[i];
+  }
 };
 struct Speed {
   static constexpr const char* symbol = "speed";
   static constexpr const char* unit = "m/s";
   static constexpr bool thermal = false;
   template <class Sim>
-  static double get(const Sim& s, std::size_t i) { return s.particles().velocity[i].norm(); }
+  static double get(const Sim& s, std::size_t i) {
+    return s.particles().velocity[i].norm();
+  }
 };
 struct Acceleration {
   static constexpr const char* symbol = "a";
@@ -268,49 +281,63 @@ struct Omega {
   static constexpr const char* unit = "rad/s";
   static constexpr bool thermal = false;
   template <class Sim>
-  static auto get(const Sim& s, std::size_t i) { return s.particles().omega[i]; }
+  static auto get(const Sim& s, std::size_t i) {
+    return s.particles().omega[i];
+  }
 };
 struct Force {
   static constexpr const char* symbol = "f";
   static constexpr const char* unit = "N";
   static constexpr bool thermal = false;
   template <class Sim>
-  static auto get(const Sim& s, std::size_t i) { return s.particles().force[i]; }
+  static auto get(const Sim& s, std::size_t i) {
+    return s.particles().force[i];
+  }
 };
 struct Torque {
   static constexpr const char* symbol = "torque";
   static constexpr const char* unit = "N m";
   static constexpr bool thermal = false;
   template <class Sim>
-  static auto get(const Sim& s, std::size_t i) { return s.particles().torque[i]; }
+  static auto get(const Sim& s, std::size_t i) {
+    return s.particles().torque[i];
+  }
 };
 struct Temperature {
   static constexpr const char* symbol = "temperature";
   static constexpr const char* unit = "K";
   static constexpr bool thermal = true;
   template <class Sim>
-  static double get(const Sim& s, std::size_t i) { return s.particles().temperature[i]; }
+  static double get(const Sim& s, std::size_t i) {
+    return s.particles().temperature[i];
+  }
 };
 struct HeatRate {
   static constexpr const char* symbol = "heat_rate";
   static constexpr const char* unit = "W";
   static constexpr bool thermal = true;
   template <class Sim>
-  static double get(const Sim& s, std::size_t i) { return s.particles().heat_rate[i]; }
+  static double get(const Sim& s, std::size_t i) {
+    return s.particles().heat_rate[i];
+  }
 };
 struct Radius {
   static constexpr const char* symbol = "radius";
   static constexpr const char* unit = "m";
   static constexpr bool thermal = false;
   template <class Sim>
-  static double get(const Sim& s, std::size_t i) { return s.particles().radius[i]; }
+  static double get(const Sim& s, std::size_t i) {
+    return s.particles().radius[i];
+  }
 };
 struct Mass {
   static constexpr const char* symbol = "mass";
   static constexpr const char* unit = "kg";
   static constexpr bool thermal = false;
   template <class Sim>
-  static double get(const Sim& s, std::size_t i) { return s.particles().mass[i]; }
+  static double get(const Sim& s, std::size_t i) {
+    return s.particles().mass[i];
+  }
 };
 /// A quantity of your own: f(sim, index) returns a number or a fixed-size Eigen vector.
 template <class F>
@@ -395,7 +422,8 @@ auto quantity_value(const Q& q, const Sim& sim, std::size_t i, const std::array<
     return q.f(sim, i);
   } else if constexpr (is_displacement<Q>) {
     Vec<Sim::dimension> u = sim.particles().position[i];
-    for (int d = 0; d < Sim::dimension; ++d) u[d] -= ref[static_cast<std::size_t>(d)];
+    for (int d = 0; d < Sim::dimension; ++d)
+      u[d] -= ref[static_cast<std::size_t>(d)];
     return u;
   } else {
     return Q::get(sim, i);
@@ -413,15 +441,21 @@ constexpr int quantity_components() {
 
 template <class Q>
 std::string quantity_symbol(const Q& q) {
-  if constexpr (is_user_quantity<Q>::value) return q.name;
-  else if constexpr (particle_quantity<Q>) return Q::symbol;
-  else return "?";
+  if constexpr (is_user_quantity<Q>::value)
+    return q.name;
+  else if constexpr (particle_quantity<Q>)
+    return Q::symbol;
+  else
+    return "?";
 }
 template <class Q>
 std::string quantity_unit(const Q& q) {
-  if constexpr (is_user_quantity<Q>::value) return q.unit;
-  else if constexpr (particle_quantity<Q>) return Q::unit;
-  else return "";
+  if constexpr (is_user_quantity<Q>::value)
+    return q.unit;
+  else if constexpr (particle_quantity<Q>)
+    return Q::unit;
+  else
+    return "";
 }
 
 /// Appends the column bases of quantity q ("vx", "vy", ...).
@@ -465,7 +499,8 @@ struct ParticleColumns {
     reference_.assign(ids.size(), {0.0, 0.0, 0.0});
     has_reference_.assign(ids.size(), 0);
     sorted_.clear();
-    for (std::size_t k = 0; k < ids.size(); ++k) sorted_.push_back({ids[k], k});
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      sorted_.push_back({ids[k], k});
     std::sort(sorted_.begin(), sorted_.end());
     locate(sim);
     if constexpr (detail::any_displacement<Qs...>)
@@ -488,8 +523,8 @@ struct ParticleColumns {
               bases.clear();
               detail::quantity_bases<Q, Sim>(qq, bases);
               for (const auto& b : bases)
-                out.push_back(detail::with_unit(b + "_" + std::to_string(id),
-                                                detail::quantity_unit(qq)));
+                out.push_back(
+                    detail::with_unit(b + "_" + std::to_string(id), detail::quantity_unit(qq)));
             };
             (one(q), ...);
           },
@@ -516,7 +551,8 @@ struct ParticleColumns {
             auto one = [&](const auto& qq) {
               using Q = std::decay_t<decltype(qq)>;
               if (i == detail::npos) {
-                out.insert(out.end(), static_cast<std::size_t>(detail::quantity_components<Q, Sim>()),
+                out.insert(out.end(),
+                           static_cast<std::size_t>(detail::quantity_components<Q, Sim>()),
                            detail::missing);
               } else {
                 detail::append_value(detail::quantity_value(qq, sim, i, reference_[k]), out);
@@ -603,7 +639,8 @@ struct GroupColumns {
             bases.clear();
             detail::quantity_bases<Q, Sim>(qq, bases);
             for (const auto& b : bases)
-              out.push_back(detail::with_unit("mean_" + b + "_" + group, detail::quantity_unit(qq)));
+              out.push_back(
+                  detail::with_unit("mean_" + b + "_" + group, detail::quantity_unit(qq)));
           };
           (one(q), ...);
         },
@@ -629,7 +666,8 @@ struct GroupColumns {
             (detail::append_value(detail::quantity_value(q, sim, i, *ref), one_), ...);
           },
           quantities);
-      for (std::size_t c = 0; c < width; ++c) sums_[c] += one_[c];
+      for (std::size_t c = 0; c < width; ++c)
+        sums_[c] += one_[c];
     }
     const auto n = members.size();
     out.push_back(static_cast<double>(n));
@@ -659,7 +697,9 @@ struct ContactForceColumns {
 
   template <class Sim>
   void names(const Sim&, std::vector<std::string>& out) const {
-    const std::string s = which == Contacts::all ? "" : which == Contacts::particles ? "_pp" : "_pw";
+    const std::string s = which == Contacts::all         ? ""
+                          : which == Contacts::particles ? "_pp"
+                                                         : "_pw";
     out.push_back("normal_force_total" + s + " [N]");
     out.push_back("normal_force_mean" + s + " [N]");
   }
@@ -678,9 +718,7 @@ struct ContactForceColumns {
 };
 /// contact_force_columns(which = Contacts::all): normal_force_total [N], normal_force_mean [N]
 /// over the touching contacts (particle-particle and particle-wall; `_pp` / `_pw` only).
-inline ContactForceColumns contact_force_columns(Contacts which = Contacts::all) {
-  return {which};
-}
+inline ContactForceColumns contact_force_columns(Contacts which = Contacts::all) { return {which}; }
 
 /// The columns of `heat_flow_columns`: heat exchanged between particles, and from the walls.
 struct HeatFlowColumns {
@@ -803,12 +841,12 @@ struct CsvWriter {
   /// Without such rows (or without the file) the file is written anew.
   bool resume = false;
   std::shared_ptr<std::ofstream> out{};
-  std::size_t width = 0;         ///< number of cells after time and step
-  std::vector<double> cells_{};  ///< one row's cells
+  std::size_t width = 0;        ///< number of cells after time and step
+  std::vector<double> cells_{}; ///< one row's cells
 
   template <class Sim>
   void start(const Sim& sim) {
-    if (out) return; // a later run appends to the same file
+    if (out) return;                 // a later run appends to the same file
     detail::start_all(columns, sim); // may raise InputError: before the file is made
     std::vector<std::string> names{"time [s]", "step"};
     if constexpr (Global) {
@@ -843,13 +881,13 @@ struct CsvWriter {
     cells_.clear();
     if constexpr (Global) {
       const auto [pp, pw] = sim.contact_counts();
-      cells_.insert(cells_.end(),
-                    {static_cast<double>(sim.size()), static_cast<double>(pp),
-                     static_cast<double>(pw), sim.kinetic_energy(), sim.potential_energy(),
-                     sim.elastic_energy()});
+      cells_.insert(cells_.end(), {static_cast<double>(sim.size()), static_cast<double>(pp),
+                                   static_cast<double>(pw), sim.kinetic_energy(),
+                                   sim.potential_energy(), sim.elastic_energy()});
       if constexpr (Sim::thermal) {
         double inflow = 0.0;
-        for (double q : sim.particles().heat_rate) inflow += q;
+        for (double q : sim.particles().heat_rate)
+          inflow += q;
         cells_.insert(cells_.end(), {sim.mean_temperature(), sim.thermal_energy(), inflow});
       }
     }
@@ -888,9 +926,8 @@ CsvWriter<true, Columns...> history(std::string path, Columns... columns) {
 
 /// particle_history(path, ids, quantities...): time, step and particle_columns(ids, ...).
 template <class... Qs>
-CsvWriter<false, ParticleColumns<Qs...>> particle_history(std::string path,
-                                                          std::vector<std::int64_t> ids,
-                                                          Qs... quantities) {
+CsvWriter<false, ParticleColumns<Qs...>>
+particle_history(std::string path, std::vector<std::int64_t> ids, Qs... quantities) {
   return csv(std::move(path), particle_columns(std::move(ids), std::move(quantities)...));
 }
 

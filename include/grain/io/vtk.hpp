@@ -137,7 +137,8 @@ inline Fields named(const std::vector<std::string>& list) {
     const auto it = std::find(names.begin(), names.end(), s);
     if (it == names.end()) {
       std::string valid;
-      for (const char* n : names) valid += std::string(n) + ", ";
+      for (const char* n : names)
+        valid += std::string(n) + ", ";
       throw InputError("grain::io::fields::named: field = '" + s +
                        "' is invalid; valid values: " + valid + "all");
     }
@@ -169,10 +170,11 @@ Fields resolve_fields(Fields f, const char* who) {
     if (available.has(Fields{1u << b}))
       valid += (valid.empty() ? "" : ", ") + std::string(fields::names[b]);
   throw InputError(std::string(who) + ": field = '" + name + "' is invalid" +
-                   (Sim::thermal ? "" : " for a mechanical simulation") + "; valid values: " +
-                   valid + ", all" +
-                   (Sim::thermal ? "" : " (temperature, heat_rate and heat_capacity need a "
-                                        "thermal simulation)"));
+                   (Sim::thermal ? "" : " for a mechanical simulation") +
+                   "; valid values: " + valid + ", all" +
+                   (Sim::thermal ? ""
+                                 : " (temperature, heat_rate and heat_capacity need a "
+                                   "thermal simulation)"));
 }
 
 /// One legacy VTK polydata file being written. Keyword lines are text in both formats; numbers
@@ -184,8 +186,8 @@ public:
         out_(path, binary_ ? std::ios::out | std::ios::binary : std::ios::out) {
     if (!out_) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
     out_.imbue(std::locale::classic());
-    out_ << std::setprecision(17) << "# vtk DataFile Version 3.0\ngrain " << kind
-         << " t = " << time << '\n'
+    out_ << std::setprecision(17) << "# vtk DataFile Version 3.0\ngrain " << kind << " t = " << time
+         << '\n'
          << (binary_ ? "BINARY" : "ASCII") << "\nDATASET POLYDATA\n";
   }
 
@@ -196,7 +198,8 @@ public:
   template <class F>
   void points(std::size_t n, F at) {
     line("POINTS " + std::to_string(n) + " double");
-    for (std::size_t k = 0; k < n; ++k) tuple(at(k));
+    for (std::size_t k = 0; k < n; ++k)
+      tuple(at(k));
     end_block();
   }
 
@@ -204,11 +207,13 @@ public:
   template <class Cell>
   void cells(const char* keyword, const std::vector<Cell>& cells) {
     std::size_t total = 0;
-    for (const auto& c : cells) total += c.size() + 1;
+    for (const auto& c : cells)
+      total += c.size() + 1;
     line(std::string(keyword) + ' ' + std::to_string(cells.size()) + ' ' + std::to_string(total));
     for (const auto& c : cells) {
       value(static_cast<std::int32_t>(c.size()));
-      for (const auto k : c) value(index32(k));
+      for (const auto k : c)
+        value(index32(k));
       end_tuple();
     }
     end_block();
@@ -234,13 +239,17 @@ public:
     } else {
       const char* type = "double";
       std::size_t comps = 1;
-      if constexpr (std::is_same_v<T, std::int64_t>) type = binary_ ? "vtktypeint64" : "long";
-      else if constexpr (std::is_same_v<T, int>) type = "int";
-      else if constexpr (!std::is_same_v<T, double>) comps = std::tuple_size_v<T>;
+      if constexpr (std::is_same_v<T, std::int64_t>)
+        type = binary_ ? "vtktypeint64" : "long";
+      else if constexpr (std::is_same_v<T, int>)
+        type = "int";
+      else if constexpr (!std::is_same_v<T, double>)
+        comps = std::tuple_size_v<T>;
       line(std::string("SCALARS ") + name + ' ' + type + ' ' + std::to_string(comps) +
            "\nLOOKUP_TABLE default");
     }
-    for (std::size_t k = 0; k < n; ++k) tuple(at(k));
+    for (std::size_t k = 0; k < n; ++k)
+      tuple(at(k));
     end_block();
   }
 
@@ -278,9 +287,11 @@ private:
   }
   template <class T>
   void tuple(const T& x) {
-    if constexpr (std::is_arithmetic_v<T>) value(x);
+    if constexpr (std::is_arithmetic_v<T>)
+      value(x);
     else
-      for (const double c : x) value(c);
+      for (const double c : x)
+        value(c);
     end_tuple();
   }
   void end_tuple() {
@@ -313,9 +324,8 @@ inline std::array<double, 4> orientation_value(const Eigen::Quaterniond& q) {
 /// group's active particles, in the order of `sim.group_indices(group)`; an unknown group or a
 /// field the simulation does not have is an InputError.
 template <class Sim>
-void write_particles_vtk(const Sim& sim, const std::string& path,
-                         Fields fields = io::fields::all, VtkFormat format = VtkFormat::ascii,
-                         const std::string& group = "") {
+void write_particles_vtk(const Sim& sim, const std::string& path, Fields fields = io::fields::all,
+                         VtkFormat format = VtkFormat::ascii, const std::string& group = "") {
   const Fields f = detail::resolve_fields<Sim>(fields, "grain::io::write_particles_vtk");
   const auto& p = sim.particles();
   const std::vector<std::uint32_t>* subset = group.empty() ? nullptr : &sim.group_indices(group);
@@ -379,8 +389,10 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
               const double a = 2.0 * std::numbers::pi * (k % circle_segments) / circle_segments;
               V x;
               x << g.center[0] + g.radius * std::cos(a), g.center[1] + g.radius * std::sin(a);
-              if (k < circle_segments) add(x);
-              else c.push_back(c.front());
+              if (k < circle_segments)
+                add(x);
+              else
+                c.push_back(c.front());
             }
           } else if constexpr (std::is_same_v<G, grain::walls::Plane>) {
             grain::Vec3 u = g.normal.unitOrthogonal(), v = g.normal.cross(u);
@@ -440,21 +452,22 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
   std::vector<char> member;
   if (!group.empty()) {
     member.assign(n, 0);
-    for (const auto i : sim.group_indices(group)) member[i] = 1;
+    for (const auto i : sim.group_indices(group))
+      member[i] = 1;
   }
   std::vector<Row> rows;
-  sim.for_each_contact([&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r,
-                           double q) {
-    if (!member.empty() && !member[i] && (wall || !member[j])) return;
-    const auto pair = sim.contact_pair(i, j, wall);
-    using C = typename Sim::contact_type;
-    const auto mj = wall ? sim.walls()[j].options.material : p.material[j];
-    const double a =
-        C::area_model::radius(g, pair, r.normal, sim.contact_params(p.material[i], mj).area);
-    const auto frame = ContactFrame<D>::from_normal(g.normal);
-    rows.push_back({i, j, wall, g.point, r.tangent.force, g.normal, frame.to_local(r.force),
-                    r.normal.force, g.overlap, a, q});
-  });
+  sim.for_each_contact(
+      [&](std::size_t i, std::size_t j, bool wall, const auto& g, const auto& r, double q) {
+        if (!member.empty() && !member[i] && (wall || !member[j])) return;
+        const auto pair = sim.contact_pair(i, j, wall);
+        using C = typename Sim::contact_type;
+        const auto mj = wall ? sim.walls()[j].options.material : p.material[j];
+        const double a =
+            C::area_model::radius(g, pair, r.normal, sim.contact_params(p.material[i], mj).area);
+        const auto frame = ContactFrame<D>::from_normal(g.normal);
+        rows.push_back({i, j, wall, g.point, r.tangent.force, g.normal, frame.to_local(r.force),
+                        r.normal.force, g.overlap, a, q});
+      });
   std::vector<std::size_t> wall_points;
   std::vector<std::array<std::size_t, 2>> lines;
   lines.reserve(rows.size());
@@ -532,10 +545,10 @@ inline std::vector<std::pair<std::string, double>> read_series(const std::string
 
 /// Options of io::vtk (every one has a default: `io::vtk(prefix, {.format = ...})`).
 struct VtkOptions {
-  double plane_size = 1.0;           ///< side [m] of the square drawn for an infinite plane
-  bool contacts = false;             ///< also write the contact network
-  Fields fields = io::fields::all;   ///< particle fields
-  std::string group{};               ///< only this group's particles (and their contacts); "" = all
+  double plane_size = 1.0;         ///< side [m] of the square drawn for an infinite plane
+  bool contacts = false;           ///< also write the contact network
+  Fields fields = io::fields::all; ///< particle fields
+  std::string group{};             ///< only this group's particles (and their contacts); "" = all
   VtkFormat format = VtkFormat::ascii; ///< of every file
   /// Continue the series of an earlier run (a run restarted from a checkpoint): keep the entries
   /// of its series files before the time at which the writer starts, go on numbering after them,

@@ -25,11 +25,11 @@ enum class Slot { normal, tangent, rolling, conduction, area, convection };
 
 /// Result of a normal-force model (all scalars along the normal).
 struct NormalResult {
-  double force = 0.0;     ///< repulsive force magnitude [N] (negative = attractive)
+  double force = 0.0; ///< repulsive force magnitude [N] (negative = attractive)
   /// stiffness [N/m] the tangential and rolling models scale with: dF_elastic/d delta of an
   /// elastic law, the loading stiffness of a hysteretic one (continuous while in contact)
   double stiffness = 0.0;
-  double damping = 0.0;   ///< damping coefficient dF/d(delta rate) [N s/m]
+  double damping = 0.0;        ///< damping coefficient dF/d(delta rate) [N s/m]
   double elastic_energy = 0.0; ///< energy stored in the elastic part [J]
   /// True if the bodies overlap but the contact carries nothing: a hysteretic law below its
   /// residual overlap, the particles off their plastic dent. No heat flows through it.
@@ -52,41 +52,39 @@ concept fills_slot = requires {
   typename M::Params;
   typename M::template History<2>;
   typename M::template History<3>;
-  { M::validate(std::declval<const typename M::Params&>()) };
-} && std::is_trivially_copyable_v<typename M::template History<2>> &&
-     std::is_trivially_copyable_v<typename M::template History<3>>;
+  {M::validate(std::declval<const typename M::Params&>())};
+}
+&&std::is_trivially_copyable_v<typename M::template History<2>>&&
+    std::is_trivially_copyable_v<typename M::template History<3>>;
 } // namespace detail
 
 /// A normal-force model: `NormalResult force(const ContactGeometry<D>&, const PairProperties&,
 /// const Params&, History<D>&)`.
 template <class M>
-concept NormalModel =
-    detail::fills_slot<M, Slot::normal> &&
+concept NormalModel = detail::fills_slot<M, Slot::normal> &&
     requires(const ContactGeometry<3>& g, const PairProperties& p, const typename M::Params& prm,
              typename M::template History<3>& h) {
-      { M::force(g, p, prm, h) } -> std::same_as<NormalResult>;
-      { M::stiffness_estimate(p, prm, 1.0, 1.0, 1.0) } -> std::convertible_to<double>;
-    };
+  { M::force(g, p, prm, h) } -> std::same_as<NormalResult>;
+  { M::stiffness_estimate(p, prm, 1.0, 1.0, 1.0) } -> std::convertible_to<double>;
+};
 
 /// A tangential-force model: `TangentResult<D> force(geometry, pair, NormalResult, Params,
 /// History<D>&, dt)`.
 template <class M>
-concept TangentModel =
-    detail::fills_slot<M, Slot::tangent> &&
+concept TangentModel = detail::fills_slot<M, Slot::tangent> &&
     requires(const ContactGeometry<3>& g, const PairProperties& p, const NormalResult& n,
              const typename M::Params& prm, typename M::template History<3>& h) {
-      { M::force(g, p, n, prm, h, 1.0) } -> std::same_as<TangentResult<3>>;
-    };
+  { M::force(g, p, n, prm, h, 1.0) } -> std::same_as<TangentResult<3>>;
+};
 
 /// A contact-torque (rolling resistance) model: adds torques to particle i and j.
 template <class M>
-concept RollingModel =
-    detail::fills_slot<M, Slot::rolling> &&
+concept RollingModel = detail::fills_slot<M, Slot::rolling> &&
     requires(const ContactGeometry<3>& g, const PairProperties& p, const NormalResult& n,
              const typename M::Params& prm, typename M::template History<3>& h, Vec3& ti,
              Vec3& tj) {
-      { M::torque(g, p, n, prm, h, 1.0, ti, tj) };
-    };
+  {M::torque(g, p, n, prm, h, 1.0, ti, tj)};
+};
 
 /// What a conduction model sees of a pair besides its `ContactGeometry` (SI units). For a pair
 /// that does not touch (indirect conduction across a gap) the geometry holds the normal, the
@@ -116,26 +114,24 @@ struct HeatContext {
 /// gaps sets `static constexpr bool indirect = true` and gives `static double cutoff(const
 /// Params&, double r_max)`, the largest gap [m] across which it conducts.
 template <class M>
-concept ConductionModel =
-    detail::fills_slot<M, Slot::conduction> && requires {
-      { M::thermal } -> std::convertible_to<bool>;
-    } && (!M::thermal || requires(const ContactGeometry<3>& g, const ContactGeometry<2>& g2,
-                                  const PairProperties& p, const HeatContext& c,
-                                  const typename M::Params& prm, typename M::template History<3>& h,
-                                  typename M::template History<2>& h2) {
-      { M::conductance(g, p, c, prm, h) } -> std::convertible_to<double>;
-      { M::conductance(g2, p, c, prm, h2) } -> std::convertible_to<double>;
-    });
+concept ConductionModel = detail::fills_slot<M, Slot::conduction> && requires {
+  { M::thermal } -> std::convertible_to<bool>;
+} &&(!M::thermal ||
+     requires(const ContactGeometry<3>& g, const ContactGeometry<2>& g2, const PairProperties& p,
+              const HeatContext& c, const typename M::Params& prm,
+              typename M::template History<3>& h, typename M::template History<2>& h2) {
+       { M::conductance(g, p, c, prm, h) } -> std::convertible_to<double>;
+       { M::conductance(g2, p, c, prm, h2) } -> std::convertible_to<double>;
+     });
 
 /// A contact-area correction: `double radius(const ContactGeometry<D>&, const PairProperties&,
 /// const NormalResult&, const Params&)` returns the contact radius [m] that conduction models use.
 template <class M>
-concept AreaCorrectionModel =
-    detail::fills_slot<M, Slot::area> &&
+concept AreaCorrectionModel = detail::fills_slot<M, Slot::area> &&
     requires(const ContactGeometry<3>& g, const PairProperties& p, const NormalResult& n,
              const typename M::Params& prm) {
-      { M::radius(g, p, n, prm) } -> std::convertible_to<double>;
-    };
+  { M::radius(g, p, n, prm) } -> std::convertible_to<double>;
+};
 
 /// A convection model (particle to surrounding fluid), an optional argument of `Simulation`:
 /// `static constexpr bool active` and, if active, `double nusselt(double Re, double Pr, const
@@ -143,16 +139,16 @@ concept AreaCorrectionModel =
 /// Prandtl number Pr = mu_f c_f / k_f. The simulation applies h = Nu k_f/(2R) over the particle
 /// surface S: Q = h S (T_f - T).
 template <class M>
-concept ConvectionModel =
-    requires {
-      { M::slot } -> std::convertible_to<Slot>;
-      requires M::slot == Slot::convection;
-      typename M::Params;
-      { M::active } -> std::convertible_to<bool>;
-      { M::validate(std::declval<const typename M::Params&>()) };
-    } && (!M::active || requires(const typename M::Params& p) {
-      { M::nusselt(1.0, 1.0, p) } -> std::convertible_to<double>;
-    });
+concept ConvectionModel = requires {
+  { M::slot } -> std::convertible_to<Slot>;
+  requires M::slot == Slot::convection;
+  typename M::Params;
+  { M::active } -> std::convertible_to<bool>;
+  {M::validate(std::declval<const typename M::Params&>())};
+}
+&&(!M::active || requires(const typename M::Params& p) {
+  { M::nusselt(1.0, 1.0, p) } -> std::convertible_to<double>;
+});
 
 /// True if the conduction model `M` conducts across gaps (evaluated for pairs within its cutoff).
 template <class M>

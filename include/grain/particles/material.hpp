@@ -12,9 +12,9 @@
 /// restitution and friction of a pair are the arithmetic means of the two materials unless
 /// overridden for that pair.
 
+#include <cmath>
 #include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
-#include <cmath>
 #include <numbers>
 #include <string>
 
@@ -22,17 +22,17 @@ namespace grain {
 
 struct Material {
   std::string name = "material";
-  double density = 0.0;       ///< [kg/m^3], > 0
-  double young = 0.0;         ///< Young's modulus used in the simulation [Pa], > 0
-  double poisson = 0.25;      ///< Poisson ratio, in (-1, 0.5)
-  double shear = 0.0;         ///< shear modulus [Pa]; 0 = derived as E/(2(1+nu))
-  double young_real = 0.0;    ///< real Young's modulus [Pa]; 0 = same as `young`
-  double restitution = 0.5;   ///< normal coefficient of restitution, in (0, 1]
-  double friction = 0.5;      ///< Coulomb (sliding) friction coefficient, >= 0
-  double friction_static = -1.0;  ///< static friction coefficient; < 0 = same as `friction`
-  double rolling_friction = 0.0;  ///< rolling resistance coefficient, >= 0
-  double conductivity = 0.0;  ///< thermal conductivity [W/(m K)], >= 0
-  double heat_capacity = 0.0; ///< specific heat capacity [J/(kg K)], >= 0
+  double density = 0.0;          ///< [kg/m^3], > 0
+  double young = 0.0;            ///< Young's modulus used in the simulation [Pa], > 0
+  double poisson = 0.25;         ///< Poisson ratio, in (-1, 0.5)
+  double shear = 0.0;            ///< shear modulus [Pa]; 0 = derived as E/(2(1+nu))
+  double young_real = 0.0;       ///< real Young's modulus [Pa]; 0 = same as `young`
+  double restitution = 0.5;      ///< normal coefficient of restitution, in (0, 1]
+  double friction = 0.5;         ///< Coulomb (sliding) friction coefficient, >= 0
+  double friction_static = -1.0; ///< static friction coefficient; < 0 = same as `friction`
+  double rolling_friction = 0.0; ///< rolling resistance coefficient, >= 0
+  double conductivity = 0.0;     ///< thermal conductivity [W/(m K)], >= 0
+  double heat_capacity = 0.0;    ///< specific heat capacity [J/(kg K)], >= 0
 
   double shear_modulus() const { return shear > 0.0 ? shear : young / (2.0 * (1.0 + poisson)); }
   double real_young() const { return young_real > 0.0 ? young_real : young; }
@@ -62,17 +62,18 @@ struct Material {
 /// and velocity are uniform.
 template <int D>
 struct Fluid {
-  double temperature = 293.15;     ///< [K]
+  double temperature = 293.15;      ///< [K]
   Vec<D> velocity = Vec<D>::Zero(); ///< [m/s]
-  double density = 0.0;            ///< [kg/m^3]
-  double viscosity = 0.0;          ///< dynamic viscosity [Pa s]
-  double conductivity = 0.0;       ///< [W/(m K)]
-  double heat_capacity = 0.0;      ///< [J/(kg K)]
+  double density = 0.0;             ///< [kg/m^3]
+  double viscosity = 0.0;           ///< dynamic viscosity [Pa s]
+  double conductivity = 0.0;        ///< [W/(m K)]
+  double heat_capacity = 0.0;       ///< [J/(kg K)]
 
   void validate() const {
     detail::require_finite("Fluid", "temperature", temperature);
     detail::require(temperature >= 0.0, "Fluid", "temperature", temperature, "[0, inf) K");
-    for (int d = 0; d < D; ++d) detail::require_finite("Fluid", "velocity component", velocity[d]);
+    for (int d = 0; d < D; ++d)
+      detail::require_finite("Fluid", "velocity component", velocity[d]);
     detail::require_non_negative("Fluid", "density", density);
     detail::require_non_negative("Fluid", "viscosity", viscosity);
     detail::require_non_negative("Fluid", "conductivity", conductivity);
@@ -90,13 +91,13 @@ struct PairOverride {
 
 /// Effective properties of a pair of materials; computed once per material pair.
 struct PairProperties {
-  double young_eff = 0.0;      ///< E* [Pa]
-  double young_real_eff = 0.0; ///< E*_0 from the real moduli [Pa]
-  double shear_eff = 0.0;      ///< G* [Pa]
-  double poisson_avg = 0.0;    ///< (nu1 + nu2)/2
-  double restitution = 1.0;    ///< e
+  double young_eff = 0.0;       ///< E* [Pa]
+  double young_real_eff = 0.0;  ///< E*_0 from the real moduli [Pa]
+  double shear_eff = 0.0;       ///< G* [Pa]
+  double poisson_avg = 0.0;     ///< (nu1 + nu2)/2
+  double restitution = 1.0;     ///< e
   double log_restitution = 0.0; ///< ln e (<= 0)
-  double friction = 0.0;       ///< dynamic (sliding) friction coefficient
+  double friction = 0.0;        ///< dynamic (sliding) friction coefficient
   double friction_static = 0.0; ///< static friction coefficient (>= dynamic)
   double rolling_friction = 0.0;
   double conductivity_eff = 0.0; ///< k1 k2/(k1 + k2) [W/(m K)]
@@ -106,7 +107,8 @@ struct PairProperties {
   double heat_capacity_j = 0.0;  ///< c2 [J/(kg K)]
   double density_i = 0.0;        ///< rho1 [kg/m^3]
   double density_j = 0.0;        ///< rho2 [kg/m^3]
-  double fluid_conductivity = 0.0; ///< k_f of the interstitial fluid [W/(m K)] (set by the simulation)
+  double fluid_conductivity =
+      0.0; ///< k_f of the interstitial fluid [W/(m K)] (set by the simulation)
 
   /// beta = ln e / sqrt(ln^2 e + pi^2), in (-1, 0]: the damping ratio that gives restitution e
   /// for a linear spring-dashpot is -beta.
@@ -117,7 +119,8 @@ struct PairProperties {
 
   static PairProperties mix(const Material& a, const Material& b, const PairOverride& o = {}) {
     PairProperties p;
-    p.young_eff = 1.0 / ((1 - a.poisson * a.poisson) / a.young + (1 - b.poisson * b.poisson) / b.young);
+    p.young_eff =
+        1.0 / ((1 - a.poisson * a.poisson) / a.young + (1 - b.poisson * b.poisson) / b.young);
     p.young_real_eff = 1.0 / ((1 - a.poisson * a.poisson) / a.real_young() +
                               (1 - b.poisson * b.poisson) / b.real_young());
     p.shear_eff = 1.0 / ((2 - a.poisson) / a.shear_modulus() + (2 - b.poisson) / b.shear_modulus());
@@ -129,8 +132,8 @@ struct PairProperties {
     const double sb = b.friction_static >= 0 ? b.friction_static : b.friction;
     p.friction_static = o.friction_static >= 0 ? o.friction_static : 0.5 * (sa + sb);
     if (p.friction_static < p.friction) p.friction_static = p.friction;
-    p.rolling_friction =
-        o.rolling_friction >= 0 ? o.rolling_friction : 0.5 * (a.rolling_friction + b.rolling_friction);
+    p.rolling_friction = o.rolling_friction >= 0 ? o.rolling_friction
+                                                 : 0.5 * (a.rolling_friction + b.rolling_friction);
     const double ks = a.conductivity + b.conductivity;
     p.conductivity_eff = ks > 0 ? a.conductivity * b.conductivity / ks : 0.0;
     p.conductivity_i = a.conductivity;

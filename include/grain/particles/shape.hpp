@@ -56,6 +56,7 @@ concept ParticleShape = requires(const T& s, double r) {
   { T::dimension } -> std::convertible_to<int>;
   { s.volume(r) } -> std::convertible_to<double>;
   { s.inertia_factor() } -> std::convertible_to<double>;
-} && (T::dimension == 2 || T::dimension == 3);
+}
+&&(T::dimension == 2 || T::dimension == 3);
 
 } // namespace grain

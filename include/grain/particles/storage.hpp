@@ -5,8 +5,8 @@
 /// Indices into the arrays change when the neighbour search re-sorts particles in space; ids never
 /// change. `index_of(id)` maps an id to the current index.
 
-#include <grain/core/vector.hpp>
 #include <cstdint>
+#include <grain/core/vector.hpp>
 #include <numeric>
 #include <vector>
 
@@ -62,19 +62,19 @@ template <int D>
 struct ParticleArrays {
   using V = Vec<D>;
   using A = Angular<D>;
-  std::vector<std::int64_t> id;         ///< stable identifier
-  std::vector<V> position;              ///< [m]
-  std::vector<V> velocity;              ///< [m/s]
-  std::vector<A> omega;                 ///< angular velocity [rad/s]
+  std::vector<std::int64_t> id; ///< stable identifier
+  std::vector<V> position;      ///< [m]
+  std::vector<V> velocity;      ///< [m/s]
+  std::vector<A> omega;         ///< angular velocity [rad/s]
   std::vector<Orientation<D>> orientation;
-  std::vector<V> force;                 ///< total force of the current step [N]
-  std::vector<A> torque;                ///< total torque of the current step [N m]
-  std::vector<double> radius;           ///< [m]
-  std::vector<double> mass;             ///< [kg]
-  std::vector<double> inv_mass;         ///< [1/kg]; 0 for a particle that does not move
-  std::vector<double> inertia;          ///< moment of inertia [kg m^2]
-  std::vector<double> inv_inertia;      ///< [1/(kg m^2)]
-  std::vector<std::uint32_t> material;  ///< index into the material table
+  std::vector<V> force;                ///< total force of the current step [N]
+  std::vector<A> torque;               ///< total torque of the current step [N m]
+  std::vector<double> radius;          ///< [m]
+  std::vector<double> mass;            ///< [kg]
+  std::vector<double> inv_mass;        ///< [1/kg]; 0 for a particle that does not move
+  std::vector<double> inertia;         ///< moment of inertia [kg m^2]
+  std::vector<double> inv_inertia;     ///< [1/(kg m^2)]
+  std::vector<std::uint32_t> material; ///< index into the material table
 
   std::size_t size() const { return id.size(); }
 

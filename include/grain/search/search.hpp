@@ -16,14 +16,14 @@
 /// list; optionally `order`, a permutation of the particles applied before each build (memory
 /// locality). A program may define its own and give it to `Simulation` as its 2nd argument.
 
-#include <grain/core/error.hpp>
-#include <grain/particles/storage.hpp>
-#include <grain/search/neighbor_list.hpp>
-#include <grain/walls/walls.hpp>
 #include <algorithm>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <grain/core/error.hpp>
+#include <grain/particles/storage.hpp>
+#include <grain/search/neighbor_list.hpp>
+#include <grain/walls/walls.hpp>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -80,7 +80,7 @@ struct VerletList {
   static void validate(const Params& p) {
     grain::detail::require_non_negative("search::VerletList", "skin", p.skin);
     grain::detail::require(p.frequency >= 0, "search::VerletList", "frequency", p.frequency,
-                    "[0, inf) steps (0 = automatic)");
+                           "[0, inf) steps (0 = automatic)");
   }
   static double skin(const Params& p, double r_max) { return p.skin > 0 ? p.skin : 0.5 * r_max; }
   static bool due(const Params& p, long steps_since, bool moved_too_far) {
@@ -152,8 +152,8 @@ concept Reorders = requires(const typename S::Params& prm, const ParticleArrays<
 
 /// One of grain's own searches (their lists are known to be well formed).
 template <class S>
-inline constexpr bool builtin = std::same_as<S, AllPairs> || std::same_as<S, VerletList> ||
-                                std::same_as<S, CellList>;
+inline constexpr bool builtin =
+    std::same_as<S, AllPairs> || std::same_as<S, VerletList> || std::same_as<S, CellList>;
 
 /// Throws InputError naming the search unless `list` is a well-formed list of n particles: n
 /// rows, partners j > i ascending within each row, wall rows for every particle, `max_span` at
@@ -246,7 +246,8 @@ struct Grid {
   }
   long count() const {
     long n = 1;
-    for (int d = 0; d < D; ++d) n *= dims[d];
+    for (int d = 0; d < D; ++d)
+      n *= dims[d];
     return n;
   }
 };
@@ -289,7 +290,8 @@ CellMembers cell_members(const Grid<D>& grid, const std::vector<Vec<D>>& x) {
     key[i] = static_cast<std::size_t>(grid.index(x[i]));
     ++out.start[key[i] + 2];
   }
-  for (std::size_t c = 2; c < out.start.size(); ++c) out.start[c] += out.start[c - 1];
+  for (std::size_t c = 2; c < out.start.size(); ++c)
+    out.start[c] += out.start[c - 1];
   out.members.resize(n);
   for (std::size_t i = 0; i < n; ++i)
     out.members[out.start[key[i] + 1]++] = static_cast<std::uint32_t>(i);

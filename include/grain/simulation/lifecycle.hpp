@@ -22,11 +22,11 @@ template <int D>
 struct Lifecycle {
   using V = Vec<D>;
 
-  std::optional<TimedRegion<D>> bounding_box; ///< particles outside it are removed
-  std::vector<TimedRegion<D>> sinks;          ///< particles inside one are removed
-  std::vector<ParticleSpec<D>> pending;       ///< inactive until their creation time
+  std::optional<TimedRegion<D>> bounding_box;          ///< particles outside it are removed
+  std::vector<TimedRegion<D>> sinks;                   ///< particles inside one are removed
+  std::vector<ParticleSpec<D>> pending;                ///< inactive until their creation time
   std::vector<std::pair<double, std::int64_t>> doomed; ///< (destruction time, id)
-  std::vector<std::int64_t> removed_ids; ///< ids removed so far, in order (never given again)
+  std::vector<std::int64_t> removed_ids;      ///< ids removed so far, in order (never given again)
   std::vector<std::int64_t> removal_requests; ///< ids removed between runs, not yet carried out
 
   /// True if anything may change in a step (else `decide` is never needed).
@@ -74,11 +74,14 @@ struct Lifecycle {
     const std::size_t n = x.size();
     const bool box = bounding_box && bounding_box->active(t);
     bool sink = false;
-    for (const auto& k : sinks) sink = sink || k.active(t);
+    for (const auto& k : sinks)
+      sink = sink || k.active(t);
     // nothing to do in most steps: no active region, nobody due
     bool due = box || sink;
-    for (std::size_t k = 0; !due && k < doomed.size(); ++k) due = doomed[k].first <= t;
-    for (std::size_t k = 0; !due && k < pending.size(); ++k) due = pending[k].creation_time <= t;
+    for (std::size_t k = 0; !due && k < doomed.size(); ++k)
+      due = doomed[k].first <= t;
+    for (std::size_t k = 0; !due && k < pending.size(); ++k)
+      due = pending[k].creation_time <= t;
     if (!due) return out;
     std::vector<char> gone(n, 0);
     bool any = false;
@@ -130,7 +133,8 @@ struct Lifecycle {
         return std::binary_search(now_removed.begin(), now_removed.end(), d.second);
       });
     } else {
-      for (std::size_t i = 0; i < n; ++i) out.kept.push_back(static_cast<std::uint32_t>(i));
+      for (std::size_t i = 0; i < n; ++i)
+        out.kept.push_back(static_cast<std::uint32_t>(i));
     }
     std::vector<ParticleSpec<D>> still;
     for (const auto& s : pending) {

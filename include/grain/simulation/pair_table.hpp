@@ -73,8 +73,8 @@ public:
     try {
       Contact::validate(p);
     } catch (const InputError& e) {
-      throw InputError(who + " (materials '" + materials_[a].name + "' and '" +
-                       materials_[b].name + "'): " + e.what());
+      throw InputError(who + " (materials '" + materials_[a].name + "' and '" + materials_[b].name +
+                       "'): " + e.what());
     }
     const auto n = materials_.size();
     params_[a * n + b] = params_[b * n + a] = p;
@@ -135,7 +135,8 @@ private:
       for (std::size_t b = 0; b < nm; ++b)
         pairs_[a * nm + b] =
             PairProperties::mix(materials_[a], materials_[b], overrides_[a * nm + b]);
-    for (auto& pp : pairs_) pp.fluid_conductivity = fluid_conductivity_;
+    for (auto& pp : pairs_)
+      pp.fluid_conductivity = fluid_conductivity_;
     resolve();
   }
   /// The contact parameters of each pair with their per-pair constants worked out (left as

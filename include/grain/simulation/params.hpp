@@ -83,15 +83,15 @@ struct SimulationParams {
   /// Impact velocity [m/s] used to estimate the stiffness of velocity-dependent contact laws in
   /// the critical time step (the largest of this and twice the fastest initial particle speed).
   double reference_velocity = 1.0;
-  Vec<D> gravity = Vec<D>::Zero();         ///< [m/s^2]
-  double damping_translational = 0.0;      ///< global damping force -c v, c in [N s/m]
-  double damping_rotational = 0.0;         ///< global damping torque -c w, c in [N m s]
-  typename Contact::Params contact{};      ///< coefficients of the contact models
-  typename SearchT::Params search{};       ///< neighbour-search settings
+  Vec<D> gravity = Vec<D>::Zero();    ///< [m/s^2]
+  double damping_translational = 0.0; ///< global damping force -c v, c in [N s/m]
+  double damping_rotational = 0.0;    ///< global damping torque -c w, c in [N m s]
+  typename Contact::Params contact{}; ///< coefficients of the contact models
+  typename SearchT::Params search{};  ///< neighbour-search settings
 
   // thermal settings (used when the contact has a conduction model)
   Analysis analysis = Analysis::automatic;
-  double initial_temperature = 293.15;     ///< default particle temperature [K]
+  double initial_temperature = 293.15; ///< default particle temperature [K]
   /// Surrounding / interstitial fluid (convection, conduction through the fluid).
   Fluid<D> fluid{};
   typename Convection::Params convection{}; ///< coefficients of the convection model

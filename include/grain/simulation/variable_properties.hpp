@@ -55,7 +55,8 @@ struct VariableProperties {
     bool first = false;
     if (is_contact_property(vp.property) && !per_particle) {
       per_particle = true;
-      for (auto& o : values) o.assign(n, std::numeric_limits<double>::quiet_NaN());
+      for (auto& o : values)
+        o.assign(n, std::numeric_limits<double>::quiet_NaN());
       first = true;
     }
     list.push_back({std::move(vp), group});
@@ -64,12 +65,14 @@ struct VariableProperties {
   /// A new particle: no values of its own.
   void append() {
     if (per_particle)
-      for (auto& o : values) o.push_back(std::numeric_limits<double>::quiet_NaN());
+      for (auto& o : values)
+        o.push_back(std::numeric_limits<double>::quiet_NaN());
   }
   /// The values follow a permutation (or a removal) of the particles.
   void permute(const std::vector<std::uint32_t>& perm) {
     if (per_particle)
-      for (auto& o : values) detail::permute_in_place(o, perm);
+      for (auto& o : values)
+        detail::permute_in_place(o, perm);
   }
 
   /// The material `base` of particle i with its per-particle values.
@@ -118,7 +121,8 @@ struct VariableProperties {
     bool bounded = false;
     for (const auto& v : list) {
       if (v.vp.property == Property::radius)
-        for (double y : v.vp.table->y()) rb = std::min(rb, y);
+        for (double y : v.vp.table->y())
+          rb = std::min(rb, y);
       bounded = bounded || v.vp.property == Property::radius || v.vp.property == Property::density;
     }
     return {rb, bounded};
@@ -128,7 +132,8 @@ struct VariableProperties {
     double r = 0.0;
     for (const auto& v : list)
       if (v.vp.property == Property::radius)
-        for (double y : v.vp.table->y()) r = std::max(r, y);
+        for (double y : v.vp.table->y())
+          r = std::max(r, y);
     return r;
   }
 
@@ -155,8 +160,12 @@ struct VariableProperties {
         case Variable::temperature:
           if constexpr (thermal) x = p.temperature[i];
           break;
-        case Variable::time: x = t; break;
-        case Variable::speed: x = p.velocity[i].norm(); break;
+        case Variable::time:
+          x = t;
+          break;
+        case Variable::speed:
+          x = p.velocity[i].norm();
+          break;
         }
         const double y = tab(x, hint);
         const double vol = shape.volume(p.radius[i]);
@@ -197,11 +206,21 @@ struct VariableProperties {
             p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
           }
           break;
-        case Property::young: set_value(0); break;
-        case Property::poisson: set_value(1); break;
-        case Property::restitution: set_value(2); break;
-        case Property::friction: set_value(3); break;
-        case Property::rolling_friction: set_value(4); break;
+        case Property::young:
+          set_value(0);
+          break;
+        case Property::poisson:
+          set_value(1);
+          break;
+        case Property::restitution:
+          set_value(2);
+          break;
+        case Property::friction:
+          set_value(3);
+          break;
+        case Property::rolling_friction:
+          set_value(4);
+          break;
         case Property::conductivity:
           set_value(5);
           c.thermal = true;

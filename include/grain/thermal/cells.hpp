@@ -460,7 +460,6 @@ inline CellRadii porosity_radii(std::span<const double> radius, double phi,
   return porosity_radii(radius, all, nl);
 }
 
-
 // ------------------------------------------------------------------ simulation options
 /// Convex hulls of 2D packings (no qhull). 3D hulls are `QhullHulls` in voronoi.hpp.
 struct PlanarHulls {

@@ -657,7 +657,6 @@ inline std::vector<double> local_porosity(std::span<const Vec3> x, std::span<con
   return phi;
 }
 
-
 // ------------------------------------------------------------------ simulation options
 /// Convex hulls of 2D (cells.hpp) and 3D (qhull) packings for the porosity cell-size methods.
 struct QhullHulls : PlanarHulls {

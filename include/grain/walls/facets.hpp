@@ -226,9 +226,9 @@ private:
   }
 
   std::vector<FacetNode<D>> nodes_;
-  std::vector<V> force_; ///< total force on each free node at the last evaluation [N]
-  std::vector<V> extra_; ///< forces added by other stages for the current evaluation [N]
-  std::vector<V> load_;  ///< contact loads of the last evaluation [N]
+  std::vector<V> force_;     ///< total force on each free node at the last evaluation [N]
+  std::vector<V> extra_;     ///< forces added by other stages for the current evaluation [N]
+  std::vector<V> load_;      ///< contact loads of the last evaluation [N]
   std::vector<V> predicted_; ///< node velocities the forces of the step see (work space) [m/s]
   std::vector<Facet> facets_;
   std::vector<std::size_t> facet_of_;

@@ -23,14 +23,14 @@
 /// the function is inactive the wall keeps its last temperature. A conducting wall exchanges heat
 /// through its material's conductivity.
 
-#include <grain/core/error.hpp>
-#include <grain/core/time_function.hpp>
-#include <grain/core/vector.hpp>
-#include <grain/walls/mesh_features.hpp>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <grain/core/error.hpp>
+#include <grain/core/time_function.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/walls/mesh_features.hpp>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -75,11 +75,11 @@ struct Triangle {
 template <int D>
 struct WallOptions {
   std::string name = "wall";
-  std::uint32_t material = 0;                ///< index returned by add_material
-  Vec<D> velocity = Vec<D>::Zero();           ///< translational velocity [m/s]
-  Angular<D> omega = zero<Angular<D>>();      ///< angular velocity about the pivot [rad/s]
-  bool has_pivot = false;                     ///< if true, rotate about `pivot`
-  Vec<D> pivot = Vec<D>::Zero();              ///< centre of rotation [m]
+  std::uint32_t material = 0;            ///< index returned by add_material
+  Vec<D> velocity = Vec<D>::Zero();      ///< translational velocity [m/s]
+  Angular<D> omega = zero<Angular<D>>(); ///< angular velocity about the pivot [rad/s]
+  bool has_pivot = false;                ///< if true, rotate about `pivot`
+  Vec<D> pivot = Vec<D>::Zero();         ///< centre of rotation [m]
   /// Temperature [K] (constant or a time function); empty = thermally insulated.
   std::optional<TimeFunction> temperature{};
 };
@@ -307,7 +307,8 @@ struct Wall {
           } else {
             detail::require(all_finite(g.a) && all_finite(g.b) && all_finite(g.c), obj,
                             "triangle corners", "(non-finite)", "finite coordinates");
-            detail::require_positive(obj, "triangle area", 0.5 * (g.b - g.a).cross(g.c - g.a).norm());
+            detail::require_positive(obj, "triangle area",
+                                     0.5 * (g.b - g.a).cross(g.c - g.a).norm());
             if (g.mesh) {
               detail::require(g.face < g.mesh->face_count(), obj, "mesh face", g.face,
                               "[0, " + std::to_string(g.mesh->face_count()) + ")");
@@ -377,7 +378,7 @@ private:
     const double r = d.norm();
     const Vec2 u = r > 0 ? Vec2(d / r) : Vec2(Vec2::UnitX());
     if (r <= c.radius) return {u, c.radius - r, -c.radius}; // inside: concave wall
-    return {-u, r - c.radius, c.radius};                     // outside: convex wall
+    return {-u, r - c.radius, c.radius};                    // outside: convex wall
   }
   static WallProximity<3> proximity_of(const walls::Plane& p, const Vec3& x) {
     return {-p.normal, (x - p.point).dot(p.normal), inf};

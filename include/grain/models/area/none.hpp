@@ -10,9 +10,9 @@
 /// chord of the lens of the undeformed bodies (`area::Geometric`). 2D disks use the same
 /// expression.
 
-#include <grain/models/concepts.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/models/concepts.hpp>
 
 namespace grain::area {
 

@@ -41,11 +41,11 @@
 /// tangent plane). Direct conduction through the contact area is not included; combine with a
 /// direct model, e.g. `Combined<BatchelorOBrien, SurroundingLayer>`.
 
+#include <algorithm>
+#include <cmath>
 #include <grain/core/error.hpp>
 #include <grain/core/quadrature.hpp>
 #include <grain/models/concepts.hpp>
-#include <algorithm>
-#include <cmath>
 #include <numbers>
 
 namespace grain::conduction {

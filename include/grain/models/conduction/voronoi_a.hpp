@@ -50,11 +50,11 @@
 /// through the contact area is not included; combine with a direct model, e.g.
 /// `Combined<BatchelorOBrien, VoronoiA>`.
 
+#include <algorithm>
+#include <cmath>
 #include <grain/core/error.hpp>
 #include <grain/core/quadrature.hpp>
 #include <grain/models/concepts.hpp>
-#include <algorithm>
-#include <cmath>
 #include <numbers>
 
 namespace grain::conduction {

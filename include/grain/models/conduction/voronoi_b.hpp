@@ -53,10 +53,10 @@
 /// used); walls are flat (a circle wall counts as its tangent plane). Direct conduction through
 /// the contact area is not included; combine with a direct model.
 
-#include <grain/core/error.hpp>
-#include <grain/models/concepts.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/core/error.hpp>
+#include <grain/models/concepts.hpp>
 #include <numbers>
 
 namespace grain::conduction {

@@ -36,9 +36,9 @@
 ///   the parameter `min_impact_velocity` is replaced by `reference_velocity`, so a contact that
 ///   forms slowly never gets a vanishing stiffness.
 
-#include <grain/particles/material.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/particles/material.hpp>
 #include <numbers>
 
 namespace grain::normal {

@@ -34,9 +34,9 @@
 /// delta_max = v sqrt(m*/K) exp(-atan(beta)/beta). Elastic energy 1/2 K delta^2; tangent
 /// stiffness K; damping coefficient eta.
 
+#include <cmath>
 #include <grain/models/concepts.hpp>
 #include <grain/models/normal/hertz_equivalent.hpp>
-#include <cmath>
 #include <numbers>
 #include <type_traits>
 

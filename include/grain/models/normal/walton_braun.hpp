@@ -55,10 +55,10 @@
 /// History: delta_max and F_max (two doubles; plus the impact velocity for
 /// `WaltonBraunPerContact`).
 
-#include <grain/models/concepts.hpp>
-#include <grain/models/normal/hertz_equivalent.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/models/concepts.hpp>
+#include <grain/models/normal/hertz_equivalent.hpp>
 #include <type_traits>
 
 namespace grain::normal {

@@ -15,8 +15,8 @@
 ///
 /// - mu_r: `coefficient` if >= 0, else the pair's `rolling_friction` (default -1).
 
-#include <grain/models/rolling/relative_rotation.hpp>
 #include <algorithm>
+#include <grain/models/rolling/relative_rotation.hpp>
 
 namespace grain::rolling {
 

@@ -35,9 +35,9 @@
 /// - c: `inertia_factor` if > 0, else 2/5 (3D) or 1/2 (2D); the model does not see the shape,
 ///   so 2D disks with sphere mass need `inertia_factor` = 0.4.
 
-#include <grain/models/rolling/relative_rotation.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/models/rolling/relative_rotation.hpp>
 #include <type_traits>
 
 namespace grain::rolling {

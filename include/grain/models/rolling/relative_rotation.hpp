@@ -12,8 +12,8 @@
 ///
 /// A rolling torque M acts on i and -M on j, so the pair's angular momentum is conserved.
 
-#include <grain/models/concepts.hpp>
 #include <cmath>
+#include <grain/models/concepts.hpp>
 
 namespace grain::rolling::detail {
 

@@ -14,8 +14,8 @@
 ///
 /// - mu_r: `coefficient` if >= 0, else the pair's `rolling_friction`, read in s/m (default -1).
 
-#include <grain/models/rolling/relative_rotation.hpp>
 #include <algorithm>
+#include <grain/models/rolling/relative_rotation.hpp>
 
 namespace grain::rolling {
 

@@ -15,8 +15,8 @@
 ///
 /// - eta_t [N s/m]: `damping`; the original model has no viscous part (default 0).
 
-#include <grain/models/tangent/stick_slip.hpp>
 #include <cmath>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 

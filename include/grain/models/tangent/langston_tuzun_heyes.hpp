@@ -21,9 +21,9 @@
 ///
 /// - eta_t [-]: `damping`, a dimensionless damping ratio (default 0: no dashpot).
 
-#include <grain/models/tangent/stick_slip.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 

@@ -19,8 +19,8 @@
 ///
 /// Defaults: damping -1 (normal damping ratio).
 
-#include <grain/models/tangent/stick_slip.hpp>
 #include <cmath>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 

@@ -16,8 +16,8 @@
 /// Unlike the seed program's spring models, only this rigid slider ties the force direction to
 /// the slip velocity, which is its definition.
 
-#include <grain/models/tangent/stick_slip.hpp>
 #include <algorithm>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 

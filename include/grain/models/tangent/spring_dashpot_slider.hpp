@@ -29,8 +29,8 @@
 /// Defaults: stiffness 0 (derived), stiffness_ratio 0 (Mindlin), damping -1 (normal ratio),
 /// restitution -1 (not used), kappa 0 (by dimension).
 
-#include <grain/models/tangent/stick_slip.hpp>
 #include <cmath>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 

@@ -21,9 +21,9 @@
 /// Friction coefficients come from the pair (`PairProperties::friction` = mu_d,
 /// `friction_static` = mu_s; mu_s < mu_d is read as mu_s = mu_d).
 
-#include <grain/models/concepts.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/models/concepts.hpp>
 #include <numbers>
 #include <type_traits>
 

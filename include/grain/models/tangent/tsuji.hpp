@@ -17,8 +17,8 @@
 ///
 /// Defaults: damping -1 (normal damping coefficient).
 
-#include <grain/models/tangent/stick_slip.hpp>
 #include <cmath>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 

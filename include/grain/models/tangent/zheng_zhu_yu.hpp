@@ -21,10 +21,10 @@
 ///
 /// - eta_t [Pa s]: `viscosity` (default 0: no dashpot).
 
-#include <grain/models/tangent/langston_tuzun_heyes.hpp>
-#include <grain/models/tangent/stick_slip.hpp>
 #include <algorithm>
 #include <cmath>
+#include <grain/models/tangent/langston_tuzun_heyes.hpp>
+#include <grain/models/tangent/stick_slip.hpp>
 
 namespace grain::tangent {
 
