@@ -52,10 +52,16 @@
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/search.hpp>
+#include <grain/simulation/components.hpp>
+#include <grain/simulation/contact_pass.hpp>
+#include <grain/simulation/diagnostics.hpp>
+#include <grain/simulation/heat.hpp>
+#include <grain/simulation/integration.hpp>
 #include <grain/simulation/lifecycle.hpp>
 #include <grain/simulation/pair_table.hpp>
 #include <grain/simulation/parallel.hpp>
 #include <grain/simulation/params.hpp>
+#include <grain/simulation/rebuild.hpp>
 #include <grain/simulation/stage_hooks.hpp>
 #include <grain/simulation/time_step.hpp>
 #include <grain/simulation/variable_properties.hpp>
@@ -300,7 +306,7 @@ public:
       // as a destruction time that has come: the list is renumbered, the other contacts keep
       // their histories
       life_.doomed.push_back({-std::numeric_limits<double>::infinity(), id});
-      lifecycle();
+      Life::lifecycle(*this);
       return;
     }
     life_.forget(id);
@@ -308,7 +314,7 @@ public:
       std::vector<std::uint32_t> kept;
       for (std::size_t i = 0; i < particles_.size(); ++i)
         if (particles_.id[i] != id) kept.push_back(static_cast<std::uint32_t>(i));
-      keep_particles(kept);
+      Neighbours::keep_particles(*this, kept);
       return;
     }
     life_.removal_requests.push_back(id); // carried out by initialize, which maps the old list
@@ -702,7 +708,7 @@ public:
       // convection adds h S to the diagonal of C^-1 L only: half of it to the row sum
       if constexpr (ConvectionT::active)
         for (std::size_t i = 0; i < h.size(); ++i)
-          h[i] += 0.5 * convection_conductance(i);
+          h[i] += 0.5 * Heat::convection_conductance(*this, i);
       t = time_step::conduction(particles_.heat_capacity, h);
     }
     return t;
@@ -746,7 +752,7 @@ public:
   /// Validates the set-up, fixes the time step, builds the neighbour list and computes the
   /// initial forces. Called by run() and step() when needed; raises InputError on bad input.
   void initialize() {
-    settle_kick();
+    Motion::settle_kick(*this);
     // not initialised until the end: the stages' initial evaluation (after_forces) sees a set-up,
     // not a step, and a set-up that throws is checked again by the next run
     initialized_ = false;
@@ -799,14 +805,14 @@ public:
                                   particles_.id[i]);
       });
       life_.removal_requests.clear();
-      keep_particles(kept);
+      Neighbours::keep_particles(*this, kept);
     }
     if (list_.rows() > 0 && (list_.rows() < particles_.size() || renumbered)) {
       origin_.assign(particles_.size(), none);
       for (std::size_t i = 0; i < kept.size(); ++i)
         if (kept[i] < list_.rows()) origin_[i] = kept[i];
     }
-    rebuild();
+    Neighbours::rebuild(*this);
     ensure_groups();
     cond_.restrain_velocities(particles_);
     if constexpr (thermal) cond_.fix_temperatures(particles_, time_);
@@ -840,7 +846,7 @@ public:
       dt_ = params_.auto_time_step_factor * t;
     }
     if constexpr (thermal) {
-      if (analysis() == Analysis::thermal) store_conductances();
+      if (analysis() == Analysis::thermal) Heat::store_conductances(*this);
     }
     if (params_.track_dissipation && std::isnan(elastic_start_)) elastic_start_ = elastic_energy();
     if (moves()) {
@@ -848,7 +854,7 @@ public:
         // forces at the initial positions; histories are not advanced by this evaluation (only
         // the entries with a history are kept aside: at a first start there are none)
         const auto saved = hist_.save();
-        compute_forces(time_, false);
+        Pass::compute_forces(*this, time_, false);
         hist_.restore_all(saved);
         call_stages<Hook::after_forces>();
       }
@@ -898,25 +904,25 @@ private:
     interrupted_ = true; // until the step is complete: an exception leaves part of a step
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
-        integrate_before(dt);
-        move_walls(dt);
+        Motion::integrate_before(*this, dt);
+        Motion::move_walls(*this, dt);
       }
       if constexpr (stages_move) {
         call_stages<Hook::before_search>();
         ensure_groups();
       }
-      update_neighbors();
+      Neighbours::update_neighbors(*this);
       ensure_groups();
-      if (heat_on_) maybe_update_cells();
-      compute_forces(IntegratorT::drift_before_forces ? time_ + dt : time_, true);
+      if (heat_on_) Heat::maybe_update_cells(*this);
+      Pass::compute_forces(*this, IntegratorT::drift_before_forces ? time_ + dt : time_, true);
       call_stages<Hook::after_forces>();
-      if (defer_kick && fuse_kick())
+      if (defer_kick && Motion::fuse_kick(*this))
         kick_pending_ = true;
       else
-        integrate_after(dt);
-      if constexpr (!IntegratorT::drift_before_forces) move_walls(dt);
+        Motion::integrate_after(*this, dt);
+      if constexpr (!IntegratorT::drift_before_forces) Motion::move_walls(*this, dt);
     } else {
-      if constexpr (thermal) static_heat_rates();
+      if constexpr (thermal) Heat::static_heat_rates(*this);
       call_stages<Hook::after_forces>();
     }
     if constexpr (thermal) {
@@ -926,7 +932,7 @@ private:
         if (kick_pending_ && cond_.temperatures.empty())
           heat_pending_ = true;
         else
-          integrate_temperature(dt);
+          Heat::integrate_temperature(*this, dt);
       }
     }
     ++step_;
@@ -938,7 +944,7 @@ private:
         w.update_temperature(time_); // current for output and queries
       if (heats() && !cond_.temperatures.empty()) cond_.fix_temperatures(particles_, time_);
     }
-    if (lifecycle_due()) lifecycle();
+    if (lifecycle_due()) Life::lifecycle(*this);
     if (!vprops_.empty()) apply_variable_properties(false);
     call_stages<Hook::end_of_step>();
     counters_.steps += 1;
@@ -960,7 +966,7 @@ public:
         try {
           advance(k + 1 < n);
         } catch (...) {
-          settle_kick();
+          Motion::settle_kick(*this);
           throw;
         }
       } else {
@@ -1015,7 +1021,7 @@ public:
       origin_.clear();
       life_.removal_requests.clear(); // the state read is complete
       groups_dirty_ = true;
-      if (vprops_.per_particle && initialized_) refresh_pair_cache();
+      if (vprops_.per_particle && initialized_) Neighbours::refresh_pair_cache(*this);
     }
   }
 
@@ -1147,6 +1153,9 @@ public:
         throw InputError(std::string("VariableProperty: property = ") + property_name(vp.property) +
                          " is invalid without a thermal state; valid: mechanical properties");
     if (vprops_.add(std::move(vp), g, particles_.size())) table_.set_per_particle(true);
+    // the contact pass and the visits of contacts read per-entry properties from now on
+    if (vprops_.per_particle && Diag::listed_rows(*this) == particles_.size())
+      Neighbours::refresh_pair_cache(*this);
     initialized_ = false;
   }
 
@@ -1161,49 +1170,7 @@ public:
   /// state is not changed.
   template <class F>
   void for_each_contact(F&& f) const {
-    ContactGeometry<D> g;
-    const auto& p = particles_;
-    auto visit = [&](std::size_t i, std::size_t j, bool wall, const PairProperties& pair, History h,
-                     double cell_radius) {
-      const auto& cp =
-          contact_params(p.material[i], wall ? walls_[j].options.material : p.material[j]);
-      auto r = Contact::evaluate(g, pair, cp, h, dt_);
-      using R = decltype(r);
-      constexpr bool view = std::is_invocable_v<F&, const ContactViewType&>;
-      if constexpr (view || std::is_invocable_v<F&, std::size_t, std::size_t, bool,
-                                                const ContactGeometry<D>&, const R&, double>) {
-        (void)cell_radius;
-        double q = 0.0;
-        if constexpr (thermal) {
-          const double tj = wall ? walls_[j].temperature : p.temperature[j];
-          if (!wall || wall_conducts(j)) {
-            const double H =
-                Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius);
-            q = H * (tj - p.temperature[i]);
-          }
-        }
-        if constexpr (view)
-          f(ContactViewType{i, j, wall, g, r, h, q, ContactFrame<D>::from_normal(g.normal)});
-        else
-          f(i, j, wall, std::as_const(g), std::as_const(r), q);
-      } else {
-        (void)cell_radius;
-        f(i, j, wall, std::as_const(g), std::as_const(r));
-      }
-    };
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      for (const auto e : list_.pair_entries(i)) {
-        const auto j = list_.partners[e];
-        if (!touching_pair(i, j, g)) continue;
-        visit(i, j, false, contact_pair(i, j, false), history_at(hist_.pair, e),
-              cell_radius_pair(e));
-      }
-      for (const auto e : list_.wall_entries(i)) {
-        const auto w = list_.walls[e];
-        if (!touching_wall(i, w, g)) continue;
-        visit(i, w, true, contact_pair(i, w, true), history_at(hist_.wall, e), cell_radius_wall(e));
-      }
-    }
+    Diag::for_each_contact(*this, f);
   }
 
   /// Visits the conductance of every conducting pair of the current list without changing any
@@ -1212,66 +1179,11 @@ public:
   /// they were given).
   template <class F>
   void for_each_conductance(F&& f) const {
-    if constexpr (thermal) {
-      const auto& p = particles_;
-      ContactGeometry<D> g;
-      const bool rest = !moves();
-      auto at_rest = [&](ContactGeometry<D>& c) {
-        if (!rest) return;
-        c.velocity = c.tangential_velocity = c.slip_velocity = V::Zero();
-        c.normal_velocity = 0.0;
-        c.omega_rel = c.slip_omega_rel = zero<A>();
-      };
-      for (std::size_t i = 0; i < p.size(); ++i) {
-        for (const auto e : list_.pair_entries(i)) {
-          const auto j = list_.partners[e];
-          double H = 0.0;
-          if (touching_pair(i, j, g)) {
-            at_rest(g);
-            const PairProperties pair = contact_pair(i, j, false);
-            const auto& cp = contact_params(p.material[i], p.material[j]);
-            History h = history_at(hist_.pair, e);
-            auto r = Contact::evaluate(g, pair, cp, h, dt_);
-            H = Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_pair(e));
-          } else if constexpr (Contact::indirect) {
-            H = gap_pair_conductance(i, j, e, g);
-          }
-          if (H != 0.0) f(i, static_cast<std::size_t>(j), false, H);
-        }
-        for (const auto e : list_.wall_entries(i)) {
-          const auto w = list_.walls[e];
-          if (!wall_conducts(w)) continue;
-          double H = 0.0;
-          if (touching_wall(i, w, g)) {
-            at_rest(g);
-            const PairProperties pair = contact_pair(i, w, true);
-            const auto& cp = contact_params(p.material[i], walls_[w].options.material);
-            History h = history_at(hist_.wall, e);
-            auto r = Contact::evaluate(g, pair, cp, h, dt_);
-            H = Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_wall(e));
-          } else if constexpr (Contact::indirect) {
-            H = gap_wall_conductance(i, w, e, g);
-          }
-          if (H != 0.0) f(i, static_cast<std::size_t>(w), true, H);
-        }
-      }
-    } else {
-      (void)f;
-    }
+    Diag::for_each_conductance(*this, f);
   }
 
   /// Number of touching particle-particle and particle-wall contacts.
-  std::pair<std::size_t, std::size_t> contact_counts() const {
-    std::size_t pp = 0, pw = 0;
-    ContactGeometry<D> g;
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-      for (const auto e : list_.pair_entries(i))
-        pp += touching_pair(i, list_.partners[e], g);
-      for (const auto e : list_.wall_entries(i))
-        pw += touching_wall(i, list_.walls[e], g);
-    }
-    return {pp, pw};
-  }
+  std::pair<std::size_t, std::size_t> contact_counts() const { return Diag::contact_counts(*this); }
 
   /// Translational + rotational kinetic energy [J].
   double kinetic_energy() const {
@@ -1482,27 +1394,6 @@ private:
   }
 
   // ---------------------------------------------------------------- neighbours
-  void update_neighbors() {
-    ++steps_since_rebuild_;
-    bool far = true;
-    if (skin_ > 0.0) {
-      double d2 = prefilled_ ? fused_d2_ : -1.0;
-      if (d2 < 0.0) {
-        d2 = 0.0;
-        const auto& x = particles_.position;
-        const long n = static_cast<long>(x.size());
-#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
-        for (long i = 0; i < n; ++i)
-          d2 = std::max(d2, detail::nan_as_inf((x[i] - snapshot_[i]).squaredNorm()));
-      }
-      const double dp = std::sqrt(d2);
-      double dw = 0.0;
-      for (const auto& w : walls_)
-        dw = std::max(dw, w.displacement_since_snapshot(reach_));
-      far = 2.0 * dp >= skin_ || dp + dw >= skin_;
-    }
-    if (SearchT::due(params_.search, steps_since_rebuild_, far)) rebuild();
-  }
 
   /// True if heat crosses wall w: it has a temperature and its material a conductivity above 0
   /// (a wall of zero conductivity insulates, for direct and indirect conduction models alike).
@@ -1541,125 +1432,9 @@ private:
                          " s, or a load, property or table may not be finite");
   }
 
-  /// Throws naming the first pair of listed particles at the same centre: their contact has no
-  /// normal (InputError before the first step, NumericalError later).
-  void require_distinct_centres() const {
-    const auto& p = particles_;
-    for (std::size_t i = 0; i + 1 < list_.offsets.size(); ++i)
-      for (const auto e : list_.pair_entries(i)) {
-        const auto j = list_.partners[e];
-        if (p.position[i] != p.position[j]) [[likely]]
-          continue;
-        const std::string what = "Simulation: particles " + std::to_string(p.id[i]) + " and " +
-                                 std::to_string(p.id[j]) + " have the same centre (" +
-                                 detail::vector_text(p.position[i]) +
-                                 ") m at t = " + detail::to_text(time_) +
-                                 " s; their contact has no normal. Valid: distinct centres";
-        if (initialized_) throw NumericalError(what);
-        throw InputError(what);
-      }
-  }
-
-  void rebuild() {
-    auto& p = particles_;
-    const std::size_t n = p.size();
-    find_fixed();
-    require_finite_state(); // a non-finite position has no cell
-    collect_wall_loads();   // the loads of the last evaluation outlive the list entries
-    NeighborList old = std::move(list_);
-    Histories old_hist = std::move(hist_);
-    // the new list will be about as long as the old one (one allocation instead of doublings)
-    list_.partners.reserve(old.partners.size() + old.partners.size() / 16);
-    // only the entries with a history are looked up: the others go before the new list is made
-    // (the peak memory of a rebuild holds both lists)
-    old_hist.shrink_to_contacts(old);
-    std::vector<std::uint32_t> perm;
-    const double reach = skin_ + cutoff_;
-    if constexpr (search::Reorders<SearchT, D>) {
-      perm = SearchT::order(params_.search, p, reach, r_max_);
-      if (!perm.empty()) {
-        p.permute(perm);
-        permute_fields(perm);
-        vprops_.permute(perm);
-        if (prefilled_) {
-          permute_values(vf_, perm);
-          if constexpr (Contact::has_torque) permute_values(wf_, perm);
-        }
-      }
-    }
-    SearchT::build(params_.search, p, walls_, reach, r_max_, list_);
-    if constexpr (!search::builtin<SearchT>) search::require_valid_list(list_, n, SearchT::name);
-    if constexpr (excluding_fields) drop_excluded_pairs();
-    require_distinct_centres();
-    // carry the histories of the old list over, by particle identity (origin_ maps the indices
-    // after a removal or activation to those of the old list)
-    const bool mapped = !origin_.empty();
-    if (old.rows() == n || (mapped && old.rows() > 0)) {
-      auto old_of = [&](std::size_t k) -> std::uint32_t {
-        const std::size_t k0 = perm.empty() ? k : perm[k];
-        return mapped ? origin_[k0] : static_cast<std::uint32_t>(k0);
-      };
-      hist_.carry_over(
-          old, old_hist, list_, old_of, [](History& h) { Contact::template reverse<D>(h); },
-          parallel_threshold);
-    } else {
-      hist_.reset(list_);
-    }
-    snapshot_ = p.position;
-    wall_loads_.reset(list_.walls.size());
-    // reach of a plane rotation: farthest particle from any wall pivot
-    reach_ = 0.0;
-    for (const auto& w : walls_) {
-      for (const auto& x : p.position)
-        reach_ = std::max(reach_, (x - w.pivot).norm());
-    }
-    reach_ += 2.0 * r_max_ + skin_;
-    for (auto& w : walls_)
-      w.take_snapshot();
-    steps_since_rebuild_ = 0;
-    ++counters_.rebuilds;
-    if (!perm.empty() || !origin_.empty()) groups_dirty_ = true;
-    origin_.clear();
-    if (vprops_.per_particle) refresh_pair_cache();
-    if (heat_on_) update_cells();
-  }
-
-  /// Keeps the particles `kept` names (ascending old indices), with their fields and pair
-  /// overrides, renumbered 0 .. kept.size() - 1.
-  void keep_particles(const std::vector<std::uint32_t>& kept) {
-    particles_.permute(kept);
-    permute_fields(kept);
-    vprops_.permute(kept);
-    groups_dirty_ = true;
-  }
-
   template <class T>
   static void permute_values(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
     detail::permute_in_place(v, perm);
-  }
-
-  /// Contact constants of every list entry from the particles' current properties.
-  void refresh_pair_cache() {
-    const auto& p = particles_;
-    const std::size_t n = p.size();
-    std::vector<Material> eff(n);
-    for (std::size_t i = 0; i < n; ++i)
-      eff[i] = material_of(i);
-    pair_cache_.resize(list_.partners.size());
-    wall_pair_cache_.resize(list_.walls.size());
-    const long nl = static_cast<long>(n);
-#pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
-    for (long i = 0; i < nl; ++i) {
-      const auto mi = p.material[i];
-      for (const auto e : list_.pair_entries(i)) {
-        const auto j = list_.partners[e];
-        pair_cache_[e] = table_.mix_of(eff[i], eff[j], table_.index(mi, p.material[j]));
-      }
-      for (const auto e : list_.wall_entries(i)) {
-        const auto mw = walls_[list_.walls[e]].options.material;
-        wall_pair_cache_[e] = table_.mix_of(eff[i], table_.material(mw), table_.index(mi, mw));
-      }
-    }
   }
 
   /// Applies the variable properties that are due (all active ones if `all`) at the current time;
@@ -1677,12 +1452,12 @@ private:
         r_max_ = std::max(r_max_, r);
       skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
       if (heats()) cutoff_ = largest_cutoff();
-      if (initialized_) rebuild();
+      if (initialized_) Neighbours::rebuild(*this);
     } else if (contact && initialized_) {
-      refresh_pair_cache();
+      Neighbours::refresh_pair_cache(*this);
     }
     if constexpr (thermal) {
-      if (any && initialized_ && analysis() == Analysis::thermal) store_conductances();
+      if (any && initialized_ && analysis() == Analysis::thermal) Heat::store_conductances(*this);
       if (thermal_change && initialized_ && heats()) {
         // the conduction limit moves with the conductivities and heat capacities
         const double limit = conduction_time_step();
@@ -1706,167 +1481,6 @@ private:
   /// integrate the half-step velocity that moved the particles (ContactGeometry::slip_velocity).
   /// With integrate::VelocityVerletHalfStep every force sees v(n+1/2).
   static constexpr bool predicts_velocity = integrate::predicts_velocity_v<IntegratorT>;
-
-  /// Forces, torques (and heat rates) at time t; `in_step` = called by step() (prescribed motion
-  /// of the step is known).
-  void compute_forces(double t, bool in_step) {
-    auto& p = particles_;
-    const long n = static_cast<long>(p.size());
-    if constexpr (predicts_velocity) {
-      vf_.resize(p.size());
-      if constexpr (Contact::has_torque) wf_.resize(p.size());
-    }
-    const double half_dt = 0.5 * dt_;
-    const bool prefilled = prefilled_;
-    prefilled_ = false;
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold && !prefilled)
-    for (long i = 0; i < (prefilled ? 0 : n); ++i) {
-      if constexpr (predicts_velocity) {
-        vf_[i] = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
-        if constexpr (Contact::has_torque)
-          wf_[i] = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
-      }
-      p.force[i] = V::Zero();
-      p.torque[i] = zero<A>();
-      if constexpr (thermal) p.heat_rate[i] = 0.0;
-    }
-    if constexpr (predicts_velocity) {
-      if (in_step && cond_.any_control())
-        cond_.predict(p, vf_, Contact::has_torque ? &wf_ : nullptr, time_, dt_);
-    }
-    tracking_ = params_.track_dissipation && in_step;
-    if (tracking_) work_rows_.assign(p.size(), 0.0);
-    // deterministic chunks: the chunk length depends on N and the list span only. At least a
-    // span; two spans while that leaves 16 chunks or more (the rows of a chunk's last span have
-    // partners beyond it, which come from memory; fewer such rows measured 2 to 4 % faster at
-    // N = 1e5); at most 64 chunks.
-    const long span = static_cast<long>(list_.max_span);
-    const long chunk = std::max({span, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
-    const long nchunks = (n + chunk - 1) / chunk;
-    // the rows' own data and the partners beyond the chunk are requested some rows in advance
-    // if a span of particle data is too large for the caches (a layer of cells in 3D); with
-    // partners close by (a 2D row of cells) all of it is in the caches already
-    const long ahead =
-        static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
-    // A row adds loads to its own particle and to partners at most one chunk ahead, so the rows
-    // of chunk c write to chunks c and c + 1 only. An even chunk never waits; an odd chunk runs
-    // once the even chunks on both sides are done. Every particle thus receives the loads of the
-    // even chunk's rows before those of the odd chunk's, whatever the number of threads (the
-    // same bits), and no two chunks that write the same particle run at once.
-    // The chunks go to the threads in contiguous runs of about equal work (entries and rows), in
-    // particle order: a thread works on about the particles it has in the static passes over the
-    // particles, whose data stay in its caches (on some machines the two cores do not share a
-    // cache). A thread runs its chunks from its last one down, each even chunk followed by the
-    // odd one above it (..., 4, 5, 2, 3, 0, 1), while the data of both are still in the caches
-    // (at N = 1e6 the data of a step do not fit, and running all even chunks before all odd ones
-    // read much of them twice).
-    auto work = [&](long c) {
-      const auto b = static_cast<std::size_t>(c * chunk);
-      const auto e = static_cast<std::size_t>(std::min(n, (c + 1) * chunk));
-      return static_cast<double>(list_.offsets[e] - list_.offsets[b]) +
-             static_cast<double>(list_.wall_offsets[e] - list_.wall_offsets[b]) +
-             static_cast<double>(e - b);
-    };
-    std::array<std::atomic<int>, 64> done{}; // chunk >= n / 64: at most 64 chunks
-    double total = 0.0;
-    for (long c = 0; c < nchunks; ++c)
-      total += work(c);
-#pragma omp parallel if (n >= parallel_threshold)
-    {
-      long thread = 0, threads = 1;
-#ifdef _OPENMP
-      thread = omp_get_thread_num();
-      threads = omp_get_num_threads();
-#endif
-      // this thread's chunks [a, b)
-      long a = nchunks, b = nchunks;
-      double before = 0.0;
-      for (long c = 0; c < nchunks; ++c) {
-        const double w = work(c);
-        const auto owner = std::min(threads - 1, static_cast<long>(static_cast<double>(threads) *
-                                                                   (before + 0.5 * w) / total));
-        before += w;
-        if (owner == thread) {
-          a = std::min(a, c);
-          b = c + 1;
-        }
-      }
-      auto run = [&](long c) {
-        if (c % 2 == 1) {
-          detail::wait_for(done[static_cast<std::size_t>(c - 1)]);
-          if (c + 1 < nchunks) detail::wait_for(done[static_cast<std::size_t>(c + 1)]);
-        }
-        contact_rows(c * chunk, std::min(n, (c + 1) * chunk), ahead, span);
-        done[static_cast<std::size_t>(c)].store(1, std::memory_order_release);
-      };
-      // from the top down, each even chunk followed by the odd one above it; an odd last chunk
-      // waits for the next thread's first one, which that thread runs last: it goes last too
-      const long deferred = (b - 1) % 2 == 1 && b < nchunks && b - 1 >= a ? b - 1 : -1;
-      for (long c = (b - 1) - (b - 1) % 2; c >= a; c -= 2) {
-        run(c);
-        if (c + 1 < b && c + 1 != deferred) run(c + 1);
-      }
-      if (a % 2 == 1 && a < b && a != deferred) run(a);
-      if (deferred >= 0) run(deferred);
-    }
-    wall_loads_.written(!walls_.empty());
-    const auto loads = global_loads(t);
-    const V g = std::get<0>(loads);
-    const double ct = std::get<1>(loads), cr = std::get<2>(loads);
-    const bool spins = spins_(); // rotational damping acts wherever angular velocities move
-    if (tracking_) {
-      // power of the global damping (negative: it removes energy)
-      const V dv = mass_damping_ ? V(mass_damping_->first(t)) : V(V::Zero());
-      const A dw = mass_damping_ ? A(mass_damping_->second(t)) : zero<A>();
-      for (long i = 0; i < n; ++i) {
-        const V& v = force_velocity()[i];
-        double w = -ct * v.squaredNorm() - p.mass[i] * v.dot(dv.cwiseProduct(v));
-        if (spins) {
-          const A& o = force_omega()[i];
-          if constexpr (D == 2)
-            w -= cr * o * o + p.inertia[i] * dw * o * o;
-          else
-            w -= cr * o.squaredNorm() + p.inertia[i] * o.dot(dw.cwiseProduct(o));
-        }
-        work_rows_[static_cast<std::size_t>(i)] += w;
-      }
-      double sum = 0.0;
-      for (double w : work_rows_)
-        sum += w;
-      work_in_ += sum * dt_;
-    }
-    if (prefilled) {
-      // gravity and global damping are already in the force arrays (fused pass)
-    } else if (!mass_damping_) {
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) {
-        p.force[i] += p.mass[i] * g - ct * force_velocity()[i];
-        if (spins) p.torque[i] -= cr * force_omega()[i];
-      }
-    } else {
-      const V dv = mass_damping_->first(t);
-      const A dw = mass_damping_->second(t);
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) {
-        const V& v = force_velocity()[i];
-        p.force[i] += p.mass[i] * (g - dv.cwiseProduct(v)) - ct * v;
-        if (spins) {
-          const A& w = force_omega()[i];
-          if constexpr (D == 2)
-            p.torque[i] -= cr * w + p.inertia[i] * dw * w;
-          else
-            p.torque[i] -= cr * w + p.inertia[i] * dw.cwiseProduct(w);
-        }
-      }
-    }
-    if (heat_on_) add_convection();
-    if (cond_.any_prescribed()) {
-      cond_.add_loads(p, t);
-      if constexpr (thermal)
-        if (heat_on_) cond_.add_heat(p, t, [&](double r) { return surface_area(r); });
-    }
-    if (cond_.any_control()) cond_.restrain_loads(p);
-  }
 
   /// Gravity [m/s^2] and the global damping coefficients (translational [N s/m], rotational
   /// [N m s]) at time t.
@@ -1900,412 +1514,7 @@ private:
       return particles_.omega;
   }
 
-  /// Requests the data that row i reads of its partners at or beyond `end` (the next chunk's
-  /// particles, not yet rows in this sweep), so that their cache misses overlap with the work of
-  /// the rows before it. Read intent only: a partner may belong to another thread's chunk.
-  GRAIN_INLINE void prefetch_row(std::size_t i, std::size_t end) const {
-    for (const auto e : list_.pair_entries(i)) {
-      const auto j = list_.partners[e];
-      if (j >= end) prefetch_particle<0>(j);
-    }
-  }
-
-  /// Requests the data of row i itself: its particle's state and loads, the start of its list
-  /// entries and histories. These are sequential streams, but a row reads a dozen of them at
-  /// once, more than the hardware prefetchers follow: at N = 1e6 (from memory) they stalled the
-  /// rows (docs/performance.md).
-  GRAIN_INLINE void prefetch_own(std::size_t i) const {
-    prefetch_particle<1>(i);
-    const auto e = list_.offsets[i]; // may be the end of the list (no entries left)
-    GRAIN_PREFETCH(list_.partners.data() + e, 0);
-    if constexpr (!Contact::template stateless<D>) {
-      GRAIN_PREFETCH(hist_.pair.data() + e, 1);
-      GRAIN_PREFETCH(hist_.pair.data() + std::min<std::size_t>(e + 2, hist_.pair.size()), 1);
-    }
-    // the rows' offsets into the list (read here, further ahead) and into the wall entries
-    GRAIN_PREFETCH(list_.offsets.data() + (i >= 2 * prefetch_rows ? i - 2 * prefetch_rows : 0), 0);
-    GRAIN_PREFETCH(list_.wall_offsets.data() + i, 0);
-  }
-
-  /// The requests made at row ii of the rows [begin, end) of a chunk, run downwards: the own data
-  /// of the row 2 x `ahead` rows further down, and the partners beyond the chunk of the row
-  /// `ahead` rows further down if it is at or above `cold` (none below the chunk's first row).
-  GRAIN_INLINE void request_ahead(long ii, long ahead, long begin, long cold, long end) const {
-    if (ii - ahead >= begin) {
-      if (ii - ahead >= cold)
-        prefetch_row(static_cast<std::size_t>(ii - ahead), static_cast<std::size_t>(end));
-      if (ii - 2 * ahead >= begin) prefetch_own(static_cast<std::size_t>(ii - 2 * ahead));
-    }
-  }
-
-  /// Requests what a contact reads of particle k, with write intent (Write = 1, a row's own
-  /// particle) for the loads it adds. A request changes no data: near a chunk's end the row
-  /// ahead may be another thread's, which costs at most a cache line moved between cores.
-  template <int Write>
-  GRAIN_INLINE void prefetch_particle(std::size_t k) const {
-    const auto& p = particles_;
-    GRAIN_PREFETCH(&p.position[k], 0);
-    GRAIN_PREFETCH(&p.material[k], 0);
-    GRAIN_PREFETCH(&p.radius[k], 0);
-    GRAIN_PREFETCH(&force_velocity()[k], 0);
-    GRAIN_PREFETCH(&p.force[k], Write);
-    if constexpr (Contact::has_torque) {
-      GRAIN_PREFETCH(&force_omega()[k], 0);
-      GRAIN_PREFETCH(&p.torque[k], Write);
-    }
-    GRAIN_PREFETCH(&p.mass[k], 0);
-    if constexpr (thermal) {
-      if (heat_on_) {
-        GRAIN_PREFETCH(&p.temperature[k], 0);
-        GRAIN_PREFETCH(&p.heat_rate[k], Write);
-      }
-    }
-  }
-
-  /// The contact of list entry e between particles i and j (j > i), which touch: geometry,
-  /// contact law, loads added to both (and heat).
-  GRAIN_INLINE void pair_contact(std::uint32_t e, std::size_t i, std::uint32_t j) {
-    auto& p = particles_;
-    const auto& vf = force_velocity();
-    const auto& wf = force_omega();
-    ContactGeometry<D> gc; // local to the contact: kept in registers
-    pair_geometry_of(i, j, gc, vf, wf);
-    if constexpr (predicts_velocity && Contact::has_torque)
-      set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
-    const std::size_t mij = table_.index(p.material[i], p.material[j]);
-    const auto& pair = vprops_.per_particle ? pair_cache_[e] : table_.properties(mij);
-    const auto& cp = table_.resolved(mij);
-    History& h = hist(hist_.pair, e);
-    auto r = Contact::evaluate(gc, pair, cp, h, dt_);
-    p.force[i] += r.force;
-    p.force[j] -= r.force;
-    if constexpr (Contact::has_torque) {
-      p.torque[i] += r.torque_i;
-      p.torque[j] += r.torque_j;
-    }
-    if (tracking_) {
-      double work = r.force.dot(vf[i] - vf[j]);
-      if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
-      work_rows_[i] += work;
-    }
-    if constexpr (thermal) {
-      if (heat_on_) {
-        const double H =
-            Contact::conductance(gc, pair, r.normal, cp, h, dt_, length(), cell_radius_pair(e));
-        const double q = H * (p.temperature[j] - p.temperature[i]);
-        const double w = dissipation_heat(gc, r);
-        p.heat_rate[i] += q + w;
-        p.heat_rate[j] += w - q;
-      }
-    }
-  }
-
-  /// The wall entries of row i.
-  GRAIN_INLINE void wall_contacts(std::size_t i) {
-    auto& p = particles_;
-    const auto& vf = force_velocity();
-    const auto& wf = force_omega();
-    [[maybe_unused]] const bool heat = heat_on_;
-    ContactGeometry<D> g;
-    for (const auto e : list_.wall_entries(i)) {
-      const auto w = list_.walls[e];
-      if (!touching_wall(i, w, g, vf, wf)) {
-        if constexpr (!Contact::template stateless<D>) hist_.wall[e] = History{};
-        wall_loads_.entries[e] = {};
-        if constexpr (Contact::indirect) {
-          if (heat && wall_conducts(w))
-            p.heat_rate[i] +=
-                gap_wall_conductance(i, w, e, g) * (walls_[w].temperature - p.temperature[i]);
-        }
-        continue;
-      }
-      if constexpr (predicts_velocity && Contact::has_torque)
-        set_slip_velocity<D>(g, walls_[w], p.velocity[i], p.omega[i]);
-      const std::size_t miw = table_.index(p.material[i], walls_[w].options.material);
-      const auto& pair = vprops_.per_particle ? wall_pair_cache_[e] : table_.properties(miw);
-      const auto& cp = table_.resolved(miw);
-      History& h = hist(hist_.wall, e);
-      auto r = Contact::evaluate(g, pair, cp, h, dt_);
-      p.force[i] += r.force;
-      if constexpr (Contact::has_torque) {
-        p.torque[i] += r.torque_i;
-        wall_loads_.entries[e] = {r.force, g.point, A(r.torque_i - cross(g.arm_i, r.force))};
-      } else {
-        wall_loads_.entries[e] = {r.force, g.point, zero<A>()};
-      }
-      if (tracking_) {
-        double work = r.force.dot(vf[i] - walls_[w].velocity_at(g.point));
-        if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]);
-        work_rows_[i] += work;
-      }
-      if constexpr (thermal) {
-        if (heat) {
-          if (wall_conducts(w)) {
-            const double H =
-                Contact::conductance(g, pair, r.normal, cp, h, dt_, length(), cell_radius_wall(e));
-            p.heat_rate[i] += H * (walls_[w].temperature - p.temperature[i]);
-          }
-          p.heat_rate[i] += dissipation_heat(g, r);
-        }
-      }
-    }
-  }
-
-  /// The contacts of rows [begin, end), from the last row down. Each row's loads are added to
-  /// both partners in the order of the list (the same order for any number of threads).
-  /// Going down, the partners of a row (j > i) in the chunk were rows a moment ago and are in
-  /// the caches: what comes from memory is the rows' own data, as sequential streams, and the
-  /// partners beyond the chunk of the rows of its last span (`ahead`: see request_ahead). Going
-  /// up instead, every row met a partner a layer of cells ahead for the first time in the step,
-  /// through the list (measured 1 to 5 % slower at N = 1e5 and 1e6, docs/performance.md).
-  void contact_rows(long begin, long end, long ahead, long span) {
-    auto& p = particles_;
-    const long cold = std::max(begin, end - span); // rows with partners beyond the chunk
-    if constexpr (Contact::indirect) {
-      ContactGeometry<D> g;
-      [[maybe_unused]] const bool heat = heat_on_;
-      for (long ii = end - 1; ii >= begin; --ii) {
-        request_ahead(ii, ahead, begin, cold, end);
-        const auto i = static_cast<std::size_t>(ii);
-        for (const auto e : list_.pair_entries(i)) {
-          const auto j = list_.partners[e];
-          const double rs = p.radius[i] + p.radius[j];
-          if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
-            pair_contact(e, i, j); // the geometry is made there, once
-            continue;
-          }
-          if constexpr (!Contact::template stateless<D>) hist_.pair[e] = History{};
-          if (heat) {
-            const double H = gap_pair_conductance(i, j, e, g);
-            const double q = H * (p.temperature[j] - p.temperature[i]);
-            p.heat_rate[i] += q;
-            p.heat_rate[j] -= q;
-          }
-        }
-        wall_contacts(i);
-      }
-    } else {
-      // a branch-free distance test over the entries of several rows, collecting the touching
-      // pairs; then the contact law for all of them in one loop (its length varies less than that
-      // of a row), then the walls of those rows. The history of a pair that no longer touches is
-      // cleared (written only if it is not blank already).
-      constexpr std::uint32_t capacity = 64;
-      std::uint32_t hit_entry[capacity], hit_row[capacity];
-      std::uint32_t nhit = 0;
-      long last = end; // rows [i, last) have their pairs collected, their walls pending
-      auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
-        for (std::uint32_t k = 0; k < nhit; ++k)
-          pair_contact(hit_entry[k], hit_row[k], list_.partners[hit_entry[k]]);
-        nhit = 0;
-      };
-      auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
-        laws();
-        for (long r = last - 1; r >= first; --r)
-          wall_contacts(static_cast<std::size_t>(r));
-        last = first;
-      };
-      auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
-                      double ri) GRAIN_INLINE_LAMBDA {
-        for (auto e = b; e < b_end; ++e) {
-          const auto j = list_.partners[e];
-          const double rs = ri + p.radius[j];
-          const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
-          hit_entry[nhit] = e;
-          hit_row[nhit] = i;
-          nhit += t;
-          if constexpr (!Contact::template stateless<D>) {
-            // no branch on the distance test: clearing a stale history is rare
-            const std::uint64_t stale = detail::byte_difference(hist_.pair[e], blank_history_) &
-                                        (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
-            if (stale != 0) [[unlikely]]
-              hist_.pair[e] = blank_history_;
-          }
-        }
-      };
-      for (long ii = end - 1; ii >= begin; --ii) {
-        request_ahead(ii, ahead, begin, cold, end);
-        const auto i = static_cast<std::uint32_t>(ii);
-        const auto r0 = list_.offsets[i], r1 = list_.offsets[i + 1];
-        const V xi = p.position[i];
-        const double ri = p.radius[i];
-        if (nhit + (r1 - r0) > capacity) {
-          flush(ii + 1);
-          if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
-            for (auto b = r0; b < r1; b += capacity) {
-              test(b, std::min(r1, b + capacity), i, xi, ri);
-              laws();
-            }
-            continue;
-          }
-        }
-        test(r0, r1, i, xi, ri);
-      }
-      flush(begin);
-    }
-  }
-
   // ---------------------------------------------------------------- heat
-  /// Fluid-cell radii of the list entries (Voronoi conduction models only).
-  void update_cells() {
-    if constexpr (Contact::needs_cell_radius) {
-      const auto& p = particles_;
-      auto r = CellSizeT::template compute<D>(
-          params_.cells, std::span<const V>(p.position.data(), p.size()),
-          std::span<const double>(p.radius.data(), p.size()), list_, walls_, cutoff_);
-      cell_pair_ = std::move(r.pair);
-      cell_wall_ = std::move(r.wall);
-      steps_since_cells_ = 0;
-    }
-  }
-  void maybe_update_cells() {
-    if constexpr (Contact::needs_cell_radius) {
-      const long f = params_.cells.update_frequency;
-      if (steps_since_rebuild_ == 0) return; // the rebuild has just updated them
-      if (f > 0 && ++steps_since_cells_ >= f) update_cells();
-    }
-  }
-
-  /// Heat rate [W] into each partner from the power dissipated at a contact (see
-  /// SimulationParams::dissipation_heating).
-  template <class R>
-  double dissipation_heat(const ContactGeometry<D>& g, const R& r) const {
-    const double f = params_.dissipation_heating;
-    if (f == 0.0) return 0.0;
-    double power = r.normal.damping * g.normal_velocity * g.normal_velocity;
-    if (r.tangent.sliding) power -= r.tangent.force.dot(g.tangential_velocity);
-    return 0.5 * f * std::max(power, 0.0);
-  }
-
-  /// Cylinder length of 2D disks for the conduction models (0 for spheres and sphere-mass disks).
-  double length() const {
-    if constexpr (requires {
-                    shape_.thickness;
-                    shape_.sphere_mass;
-                  })
-      return shape_.sphere_mass ? 0.0 : shape_.thickness;
-    else
-      return 0.0;
-  }
-  /// Fluid-cell radius of list entry e (infinite, i.e. no cell, when the radii were not computed:
-  /// a mechanical analysis of a thermal contact).
-  double cell_radius_pair(std::size_t e) const {
-    if constexpr (Contact::needs_cell_radius)
-      return e < cell_pair_.size() ? cell_pair_[e] : std::numeric_limits<double>::infinity();
-    else {
-      (void)e;
-      return std::numeric_limits<double>::infinity();
-    }
-  }
-  double cell_radius_wall(std::size_t e) const {
-    if constexpr (Contact::needs_cell_radius)
-      return e < cell_wall_.size() ? cell_wall_[e] : std::numeric_limits<double>::infinity();
-    else {
-      (void)e;
-      return std::numeric_limits<double>::infinity();
-    }
-  }
-  /// Conductance across the gap of a pair that does not touch (0 beyond the cutoff).
-  double gap_pair_conductance(std::size_t i, std::size_t j, std::size_t e,
-                              ContactGeometry<D>& g) const {
-    const auto& p = particles_;
-    const V d = p.position[j] - p.position[i];
-    const double dist = d.norm();
-    const double gap = dist - p.radius[i] - p.radius[j];
-    if (!(gap < cutoff_) || dist <= 0) return 0.0;
-    gap_pair_geometry<D>(g, V(d / dist), dist, p.radius[i], p.radius[j], p.mass[i], p.mass[j]);
-    History h{};
-    return Contact::gap_conductance(g, contact_pair(i, j, false),
-                                    contact_params(p.material[i], p.material[j]), h, dt_, length(),
-                                    cell_radius_pair(e));
-  }
-  double gap_wall_conductance(std::size_t i, std::size_t w, std::size_t e,
-                              ContactGeometry<D>& g) const {
-    const auto& p = particles_;
-    const auto prox = walls_[w].proximity(p.position[i]);
-    if (!(prox.distance - p.radius[i] < cutoff_)) return 0.0;
-    gap_wall_geometry<D>(g, prox, p.radius[i], p.mass[i]);
-    History h{};
-    return Contact::gap_conductance(g, contact_pair(i, w, true),
-                                    contact_params(p.material[i], walls_[w].options.material), h,
-                                    dt_, length(), cell_radius_wall(e));
-  }
-
-  /// Convective conductance h S [W/K] of particle i: h = Nu(Re, Pr) k_f / (2R), S its surface.
-  double convection_conductance(std::size_t i) const {
-    if constexpr (ConvectionT::active) {
-      const auto& f = params_.fluid;
-      const double pr = f.viscosity * f.heat_capacity / f.conductivity;
-      const double dia = 2.0 * particles_.radius[i];
-      const V v = moves() && force_velocity().size() == particles_.size() ? force_velocity()[i]
-                                                                          : V(V::Zero());
-      const double re = f.density * dia * (f.velocity - v).norm() / f.viscosity;
-      const double h = ConvectionT::nusselt(re, pr, params_.convection) * f.conductivity / dia;
-      return h * shape_.surface(particles_.radius[i]);
-    } else {
-      (void)i;
-      return 0.0;
-    }
-  }
-
-  /// Heat exchanged with the fluid: Q = h S (T_f - T).
-  void add_convection() {
-    if constexpr (thermal && ConvectionT::active) {
-      auto& p = particles_;
-      const double tf = params_.fluid.temperature;
-      const long n = static_cast<long>(p.size());
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i)
-        p.heat_rate[i] +=
-            convection_conductance(static_cast<std::size_t>(i)) * (tf - p.temperature[i]);
-    }
-  }
-
-  /// Thermal analysis: the conductances of the (static) packing, computed once.
-  void store_conductances() {
-    static_pairs_.clear();
-    static_walls_.clear();
-    for_each_conductance([&](std::size_t i, std::size_t j, bool wall, double H) {
-      (wall ? static_walls_ : static_pairs_)
-          .push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), H});
-    });
-  }
-
-  /// Thermal analysis: heat rates from the stored conductances (in a fixed order).
-  void static_heat_rates() {
-    if constexpr (thermal) {
-      auto& p = particles_;
-      std::fill(p.heat_rate.begin(), p.heat_rate.end(), 0.0);
-      for (const auto& c : static_pairs_) {
-        const double q = c.conductance * (p.temperature[c.j] - p.temperature[c.i]);
-        p.heat_rate[c.i] += q;
-        p.heat_rate[c.j] -= q;
-      }
-      for (const auto& c : static_walls_)
-        p.heat_rate[c.i] += c.conductance * (walls_[c.j].temperature - p.temperature[c.i]);
-      add_convection();
-      if (!cond_.heat_fluxes.empty() || !cond_.heat_rates.empty())
-        cond_.add_heat(p, time_, [&](double r) { return surface_area(r); });
-    }
-  }
-
-  /// Forward Euler for particle i: T += dt Q / C (also done in the fused pass).
-  GRAIN_INLINE void temperature_step(std::size_t i, double dt) {
-    auto& p = particles_;
-    p.temperature[i] += dt * p.heat_rate[i] * p.inv_heat_capacity[i];
-  }
-  /// Forward Euler for every particle.
-  void integrate_temperature(double dt) {
-    if constexpr (thermal) {
-      const long n = static_cast<long>(particles_.size());
-      bool finite = true;
-#pragma omp parallel for reduction(&& : finite) schedule(static) if (n >= parallel_threshold)
-      for (long i = 0; i < n; ++i) {
-        temperature_step(static_cast<std::size_t>(i), dt);
-        finite = finite && std::isfinite(particles_.temperature[static_cast<std::size_t>(i)]);
-      }
-      if (!finite) require_finite_state();
-    }
-  }
 
   History& hist(std::vector<History>& h, std::size_t e) {
     if constexpr (Contact::template stateless<D>) {
@@ -2316,261 +1525,12 @@ private:
     }
   }
 
-  // ---------------------------------------------------------------- integration
-  /// The integrator's first stage for particle i: velocity and position, angular velocity and
-  /// (if `orient`) orientation.
-  GRAIN_INLINE void before_one(std::size_t i, double dt, bool spins, bool orient) {
-    auto& p = particles_;
-    const V a = p.force[i] * p.inv_mass[i];
-    IntegratorT::before(p.velocity[i], a, dt,
-                        [&](const V& u, double h) { p.position[i] += u * h; });
-    if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
-      const A al = p.torque[i] * p.inv_inertia[i];
-      IntegratorT::before(p.omega[i], al, dt, [&](const A& u, double h) {
-        if (orient) rotate(p.orientation[i], u, h);
-      });
-    } else if (orient) {
-      rotate(p.orientation[i], p.omega[i], dt);
-    }
-  }
-  void integrate_before(double dt) {
-    auto& p = particles_;
-    const long n = static_cast<long>(p.size());
-    const bool control = cond_.any_control();
-    if constexpr (IntegratorT::drift_before_forces) {
-      if (!control && !mass_damping_ && !stages_move) {
-        fused_before(dt);
-        return;
-      }
-    }
-    settle_kick();
-    if (control) cond_.save(p, time_, dt);
-    const bool spins = spins_();
-    const bool orient = params_.track_orientation;
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i) {
-      before_one(static_cast<std::size_t>(i), dt, spins, orient);
-    }
-    if (control) cond_.drift(p, time_, dt, true, rotator());
-  }
-  void integrate_after(double dt) {
-    auto& p = particles_;
-    const long n = static_cast<long>(p.size());
-    const bool control = cond_.any_control();
-    if constexpr (!IntegratorT::drift_before_forces)
-      if (control) cond_.save(p, time_, dt);
-    const bool spins = spins_();
-    const bool orient = params_.track_orientation;
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i) {
-      const V a = p.force[i] * p.inv_mass[i];
-      IntegratorT::after(p.velocity[i], a, dt,
-                         [&](const V& u, double h) { p.position[i] += u * h; });
-      if (Contact::has_torque || spins) { // folded at compile time for torque-making contacts
-        const A al = p.torque[i] * p.inv_inertia[i];
-        IntegratorT::after(p.omega[i], al, dt, [&](const A& u, double h) {
-          if (orient) rotate(p.orientation[i], u, h);
-        });
-      } else if (!IntegratorT::drift_before_forces && orient) {
-        rotate(p.orientation[i], p.omega[i], dt);
-      }
-    }
-    if (control) {
-      if constexpr (IntegratorT::drift_before_forces)
-        cond_.finish(p, time_, dt);
-      else
-        cond_.drift(p, time_, dt, false, rotator());
-    }
-  }
-  /// The second half kick of velocity Verlet for particle i (what integrate_after does for it
-  /// when no particle is controlled).
-  GRAIN_INLINE void after_one(std::size_t i, double dt, bool spins) {
-    auto& p = particles_;
-    const V a = p.force[i] * p.inv_mass[i];
-    IntegratorT::after(p.velocity[i], a, dt, [](const V&, double) {});
-    if (Contact::has_torque || spins) {
-      const A al = p.torque[i] * p.inv_inertia[i];
-      IntegratorT::after(p.omega[i], al, dt, [](const A&, double) {});
-    }
-  }
-  /// True if the second half kick of this step may be left to the next step's fused pass: the
-  /// fused pass runs (velocity Verlet, no controlled particle, no mass damping), and nothing
-  /// between the two reads or changes velocities or forces (no stage, no variable property, no
-  /// particle created or removed).
-  bool fuse_kick() const {
-    if constexpr (IntegratorT::drift_before_forces && no_stages)
-      return !cond_.any_control() && !mass_damping_ && vprops_.empty() && !lifecycle_due();
-    else
-      return false;
-  }
-  /// Applies a temperature update and a half kick left pending (a run interrupted by an
-  /// exception, a re-initialisation, a step that cannot use the fused pass).
-  void settle_kick() {
-    if (kick_pending_) {
-      kick_pending_ = false;
-      const bool spins = spins_();
-      for (std::size_t i = 0; i < particles_.size(); ++i)
-        after_one(i, dt_, spins);
-    }
-    if (heat_pending_) {
-      heat_pending_ = false;
-      integrate_temperature(dt_);
-    }
-  }
-  /// Velocity Verlet without controlled particles or mass damping: one pass over the particles
-  /// ends step n (when its second half kick was left pending) and starts step n+1. Per particle:
-  /// the half kick and the drift, the displacement
-  /// since the last neighbour-list build, the velocities the forces will see (v(n+1/2) +
-  /// a(n) dt/2), and the force arrays started with gravity and global damping (heat rates with
-  /// zero). `compute_forces` and `update_neighbors` then skip their own passes over the particles.
-  void fused_before(double dt) {
-    auto& p = particles_;
-    const long n = static_cast<long>(p.size());
-    const bool spins = spins_();
-    const bool orient = params_.track_orientation;
-    if constexpr (predicts_velocity) {
-      vf_.resize(p.size());
-      if constexpr (Contact::has_torque) wf_.resize(p.size());
-    }
-    const auto loads = global_loads(time_ + dt);
-    const V g = std::get<0>(loads);
-    const double ct = std::get<1>(loads), cr = std::get<2>(loads);
-    const bool check = skin_ > 0.0 && snapshot_.size() == p.size();
-    const bool kick = kick_pending_;
-    kick_pending_ = false;
-    const Fused f{dt, g, ct, cr, spins, orient, heat_pending_};
-    heat_pending_ = false;
-    // the two flags that change between steps select a loop compiled for them
-    const double d2 =
-        kick ? (check ? fused_pass<true, true>(n, f) : fused_pass<true, false>(n, f))
-             : (check ? fused_pass<false, true>(n, f) : fused_pass<false, false>(n, f));
-    // an infinite value: a position or temperature that is not finite (or a displacement too
-    // large to square, which the rebuild it forces handles)
-    if (d2 == std::numeric_limits<double>::infinity()) require_finite_state();
-    fused_d2_ = check ? d2 : -1.0;
-    prefilled_ = true;
-  }
-
-  /// What the fused pass needs per step.
-  struct Fused {
-    double dt;
-    V g;           ///< gravity at the end of the step [m/s^2]
-    double ct, cr; ///< global damping [N s/m], [N m s]
-    bool spins, orient;
-    bool heat; ///< the last step's temperature update was left to this pass (with its kick)
-  };
-  /// The fused pass over all n particles, with the last step's second half kick if Kick, and the
-  /// displacement since the last neighbour-list build measured if Check (a snapshot exists);
-  /// returns the largest squared displacement (0 without Check).
-  template <bool Kick, bool Check>
-  double fused_pass(long n, const Fused& f) {
-    double d2 = 0.0;
-    // Each thread runs its share forwards: it ends on the particles its first contact chunks
-    // (its last ones: the contact pass runs down) read next, which are then still in the caches
-    // (the share is about the one the contact pass works on; at N = 1e6 the particle data do not
-    // fit in the caches).
-#pragma omp parallel reduction(max : d2) if (n >= parallel_threshold)
-    {
-      const auto [lo, hi] = detail::static_share(n);
-      for (long i = lo; i < hi; ++i)
-        d2 = std::max(d2,
-                      detail::nan_as_inf(fused_one<Kick, Check>(static_cast<std::size_t>(i), f)));
-    }
-    return d2;
-  }
-  /// The fused pass for particle i (see fused_before); returns its squared displacement since the
-  /// last neighbour-list build (0 without Check), or +inf if its temperature is not finite.
-  template <bool Kick, bool Check>
-  GRAIN_INLINE double fused_one(std::size_t i, const Fused& f) {
-    auto& p = particles_;
-    const double half_dt = 0.5 * f.dt;
-    if constexpr (Kick) after_one(i, f.dt, f.spins); // the last step's second half kick
-    before_one(i, f.dt, f.spins, f.orient);
-    if constexpr (predicts_velocity) {
-      const V v = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
-      vf_[i] = v;
-      p.force[i] = p.mass[i] * f.g - f.ct * v;
-    } else {
-      p.force[i] = p.mass[i] * f.g - f.ct * p.velocity[i];
-    }
-    if constexpr (Contact::has_torque) {
-      if constexpr (predicts_velocity) {
-        const A w = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
-        wf_[i] = w;
-        p.torque[i] = -f.cr * w;
-      } else {
-        p.torque[i] = -f.cr * p.omega[i];
-      }
-    } else {
-      // no contact torque; a prescribed torque still spins the particle, and damping acts on it
-      p.torque[i] = f.spins ? A(-f.cr * p.omega[i]) : zero<A>();
-    }
-    if constexpr (thermal) {
-      if constexpr (Kick)
-        if (f.heat) temperature_step(i, f.dt);
-      p.heat_rate[i] = 0.0;
-      if (!std::isfinite(p.temperature[i])) return std::numeric_limits<double>::infinity();
-    }
-    if constexpr (Check)
-      return (p.position[i] - snapshot_[i]).squaredNorm();
-    else
-      return 0.0;
-  }
   /// True if angular velocities are integrated from torques: a contact model makes torques, or
   /// a prescribed torque acts.
   bool spins_() const { return Contact::has_torque || !cond_.torques.empty(); }
-  static auto rotator() {
-    return [](Orientation<D>& q, const A& w, double h) { rotate(q, w, h); };
-  }
-  /// Walls move over [t, t + dt] with their velocities at mid-step and end with those at t + dt.
-  void move_walls(double dt) {
-    for (auto& w : walls_) {
-      w.update_motion(time_ + 0.5 * dt);
-      w.move(dt);
-      w.update_motion(time_ + dt);
-    }
-  }
 
   // ---------------------------------------------------------------- lifecycle
   bool lifecycle_due() const { return life_.active(); }
-  /// Removes the particles that left the bounding box, entered a sink or reached their
-  /// destruction time, and activates those whose creation time has come (Lifecycle::decide).
-  void lifecycle() {
-    auto& p = particles_;
-    const double t = time_;
-    auto d = life_.decide(t, p.position, p.id, [&] { require_finite_state(); });
-    if (!d.changed) return;
-    collect_wall_loads(); // before the particles are renumbered
-    if (d.removed) keep_particles(d.kept);
-    std::vector<std::int64_t> born_ids;
-    for (const auto& s : d.born) {
-      append_particle(s);
-      p.force.back() = p.mass.back() * gravity(); // its first half kick feels its weight
-      d.kept.push_back(none);
-      born_ids.push_back(p.id.back());
-    }
-    const bool born = !d.born.empty();
-    origin_ = std::move(d.kept);
-    groups_dirty_ = true;
-    rebuild();
-    ensure_groups();
-    if (born) {
-      cond_.restrain_loads(p); // the first half kick of a newborn particle too
-      cond_.restrain_velocities(p);
-      if constexpr (thermal)
-        if (heats()) cond_.fix_temperatures(p, t);
-      if (!vprops_.empty()) {
-        // a newborn particle takes its variable properties now, not at the next update
-        std::sort(born_ids.begin(), born_ids.end());
-        std::vector<char> newborn(p.size(), 0);
-        for (std::size_t i = 0; i < p.size(); ++i)
-          newborn[i] = std::binary_search(born_ids.begin(), born_ids.end(), p.id[i]) ? 1 : 0;
-        apply_variable_properties(true, &newborn);
-      }
-    }
-    if constexpr (thermal)
-      if (analysis() == Analysis::thermal) store_conductances();
-  }
   static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
 
   // ---------------------------------------------------------------- stages and fields
@@ -2600,33 +1560,25 @@ private:
   static constexpr bool excluding_fields = []<class... F>(fields<F...>) {
     return (detail::excluding_field<F> || ... || false);
   }(FieldList{});
-  /// Removes the pairs that a field excludes (two members of the same clump: rigid, they never
-  /// act on each other) from the list. The largest index span is kept (an upper bound is all the
-  /// chunking needs).
-  void drop_excluded_pairs() {
-    auto excluded = [&](std::size_t i, std::size_t j) {
-      return std::apply(
-          [&](const auto&... f) { return (detail::field_excludes(f[i], f[j]) || ... || false); },
-          fields_);
-    };
-    std::uint32_t out = 0, begin = list_.offsets[0];
-    for (std::size_t i = 0; i + 1 < list_.offsets.size(); ++i) {
-      const std::uint32_t end = list_.offsets[i + 1];
-      for (std::uint32_t e = begin; e < end; ++e) {
-        const auto j = list_.partners[e];
-        if (excluded(i, j)) continue;
-        list_.partners[out++] = j;
-      }
-      begin = end;
-      list_.offsets[i + 1] = out;
-    }
-    list_.partners.resize(out);
-  }
   void check_wall(std::size_t w, const char* what) const {
     if (w >= walls_.size())
       throw InputError(std::string("Simulation::") + what + ": wall index " + std::to_string(w) +
                        " is invalid; valid range: [0, " + std::to_string(walls_.size()) + ")");
   }
+
+  // the components that work on the state (simulation/components.hpp)
+  using Pass = detail::ContactPass<Simulation>;
+  using Heat = detail::HeatStep<Simulation>;
+  using Motion = detail::Motion<Simulation>;
+  using Neighbours = detail::NeighbourRebuild<Simulation>;
+  using Life = detail::LifecycleStep<Simulation>;
+  using Diag = detail::Diagnostics<Simulation>;
+  friend Pass;
+  friend Heat;
+  friend Motion;
+  friend Neighbours;
+  friend Life;
+  friend Diag;
 
   StageTuple stages_{};
   typename FieldStore::type fields_{};

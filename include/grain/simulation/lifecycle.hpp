@@ -7,6 +7,7 @@
 
 #include <grain/conditions/regions.hpp>
 #include <grain/core/vector.hpp>
+#include <grain/simulation/components.hpp>
 #include <grain/simulation/params.hpp>
 
 #include <algorithm>
@@ -151,3 +152,63 @@ struct Lifecycle {
 };
 
 } // namespace grain
+
+namespace grain::detail {
+
+/// The lifecycle step of a Simulation: applies the decision of `Lifecycle<D>::decide`, removing
+/// particles and activating those whose creation time has come, with their contacts, groups,
+/// restraints and variable properties. A component of `Simulation` (simulation.hpp): static
+/// functions over the simulation's state, which declares it a friend.
+template <class Sim>
+struct LifecycleStep {
+  using Contact = typename Sim::contact_type;
+  using V = typename Sim::V;
+  using A = typename Sim::A;
+  using History = typename Sim::History;
+  static constexpr int D = Sim::D;
+  static constexpr bool thermal = Sim::thermal;
+  static constexpr long parallel_threshold = Sim::parallel_threshold;
+  using Heat = HeatStep<Sim>;
+  using Neighbours = NeighbourRebuild<Sim>;
+
+  /// Removes the particles that left the bounding box, entered a sink or reached their
+  /// destruction time, and activates those whose creation time has come (Lifecycle::decide).
+  static void lifecycle(Sim& s) {
+    auto& p = s.particles_;
+    const double t = s.time_;
+    auto d = s.life_.decide(t, p.position, p.id, [&] { s.require_finite_state(); });
+    if (!d.changed) return;
+    s.collect_wall_loads(); // before the particles are renumbered
+    if (d.removed) Neighbours::keep_particles(s, d.kept);
+    std::vector<std::int64_t> born_ids;
+    for (const auto& spec : d.born) {
+      s.append_particle(spec);
+      p.force.back() = p.mass.back() * s.gravity(); // its first half kick feels its weight
+      d.kept.push_back(Sim::none);
+      born_ids.push_back(p.id.back());
+    }
+    const bool born = !d.born.empty();
+    s.origin_ = std::move(d.kept);
+    s.groups_dirty_ = true;
+    Neighbours::rebuild(s);
+    s.ensure_groups();
+    if (born) {
+      s.cond_.restrain_loads(p); // the first half kick of a newborn particle too
+      s.cond_.restrain_velocities(p);
+      if constexpr (thermal)
+        if (s.heats()) s.cond_.fix_temperatures(p, t);
+      if (!s.vprops_.empty()) {
+        // a newborn particle takes its variable properties now, not at the next update
+        std::sort(born_ids.begin(), born_ids.end());
+        std::vector<char> newborn(p.size(), 0);
+        for (std::size_t i = 0; i < p.size(); ++i)
+          newborn[i] = std::binary_search(born_ids.begin(), born_ids.end(), p.id[i]) ? 1 : 0;
+        s.apply_variable_properties(true, &newborn);
+      }
+    }
+    if constexpr (thermal)
+      if (s.analysis() == Analysis::thermal) Heat::store_conductances(s);
+  }
+};
+
+} // namespace grain::detail

@@ -1,0 +1,36 @@
+#pragma once
+/// \file components.hpp
+/// The components of a `Simulation` (simulation.hpp) that work on its state: each is a struct of
+/// static functions over a `Simulation&`, which declares them friends. They are composed at
+/// compile time (no virtual calls, nothing stored); the step order lives in `Simulation`.
+///
+/// | component             | file               | responsibility                                  |
+/// |-----------------------|--------------------|-------------------------------------------------|
+/// | `ContactPass<Sim>`    | contact_pass.hpp   | loads of all contacts, then the global loads    |
+/// | `HeatStep<Sim>`       | heat.hpp           | conductances, convection, temperature update    |
+/// | `Motion<Sim>`         | integration.hpp    | integrator stages, fused Verlet pass, walls     |
+/// | `NeighbourRebuild<Sim>` | rebuild.hpp      | when and how the neighbour list is rebuilt      |
+/// | `LifecycleStep<Sim>`  | lifecycle.hpp      | removal and activation of particles             |
+/// | `Diagnostics<Sim>`    | diagnostics.hpp    | read-only visits of contacts and conductances   |
+///
+/// The components that own data and need no simulation (tested on their own) are the contact
+/// history store (contact/history.hpp), the pair table (pair_table.hpp), the lifecycle decision
+/// (lifecycle.hpp), the variable properties (variable_properties.hpp) and the wall loads
+/// (wall_loads.hpp).
+
+namespace grain::detail {
+
+template <class Sim>
+struct ContactPass;
+template <class Sim>
+struct HeatStep;
+template <class Sim>
+struct Motion;
+template <class Sim>
+struct NeighbourRebuild;
+template <class Sim>
+struct LifecycleStep;
+template <class Sim>
+struct Diagnostics;
+
+} // namespace grain::detail

@@ -1,0 +1,454 @@
+#pragma once
+/// \file contact_pass.hpp
+/// The contact pass of a Simulation: the loads (forces, torques, heat rates) of every contact of
+/// the neighbour list at one time, then the global loads (gravity, damping, convection,
+/// prescribed loads, restraints). Pair entries are evaluated row by row in deterministic chunks
+/// (see `compute_forces`), so the sums are bit-identical for any number of threads; the data of
+/// rows ahead are requested early when a list span does not fit in the caches.
+///
+/// A component of `Simulation` (simulation.hpp): static functions over the simulation's state,
+/// which declares it a friend; nothing here is virtual or stored.
+
+#include <grain/contact/geometry.hpp>
+#include <grain/contact/history.hpp>
+#include <grain/core/config.hpp>
+#include <grain/core/error.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/search/neighbor_list.hpp>
+#include <grain/simulation/components.hpp>
+#include <grain/simulation/parallel.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <tuple>
+#include <vector>
+
+namespace grain::detail {
+
+template <class Sim>
+struct ContactPass {
+  using Contact = typename Sim::contact_type;
+  using V = typename Sim::V;
+  using A = typename Sim::A;
+  using History = typename Sim::History;
+  static constexpr int D = Sim::D;
+  static constexpr bool thermal = Sim::thermal;
+  static constexpr long parallel_threshold = Sim::parallel_threshold;
+  static constexpr bool predicts_velocity = Sim::predicts_velocity;
+  static constexpr long prefetch_rows = Sim::prefetch_rows;
+  static constexpr double prefetch_span_bytes = Sim::prefetch_span_bytes;
+  static constexpr double row_bytes = Sim::row_bytes;
+  using Heat = HeatStep<Sim>;
+
+  /// Forces, torques (and heat rates) at time t; `in_step` = called by step() (prescribed motion
+  /// of the step is known): the loads start from zero (or from the fused pass's gravity and
+  /// damping), the contacts add theirs, then the global and prescribed loads are added.
+  static void compute_forces(Sim& s, double t, bool in_step) {
+    const bool prefilled = s.prefilled_;
+    s.prefilled_ = false;
+    start_loads(s, in_step, prefilled);
+    contact_loads(s);
+    s.wall_loads_.written(!s.walls_.empty());
+    add_global_loads(s, t, prefilled);
+  }
+
+  /// The velocities the forces see (velocity Verlet: the prediction v(n+1/2) + a(n) dt/2) and
+  /// zero loads, unless the fused pass has `prefilled` them; energy tracking starts.
+  static void start_loads(Sim& s, bool in_step, bool prefilled) {
+    auto& p = s.particles_;
+    const long n = static_cast<long>(p.size());
+    if constexpr (predicts_velocity) {
+      s.vf_.resize(p.size());
+      if constexpr (Contact::has_torque) s.wf_.resize(p.size());
+    }
+    const double half_dt = 0.5 * s.dt_;
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold && !prefilled)
+    for (long i = 0; i < (prefilled ? 0 : n); ++i) {
+      if constexpr (predicts_velocity) {
+        s.vf_[i] = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
+        if constexpr (Contact::has_torque)
+          s.wf_[i] = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
+      }
+      p.force[i] = V::Zero();
+      p.torque[i] = zero<A>();
+      if constexpr (thermal) p.heat_rate[i] = 0.0;
+    }
+    if constexpr (predicts_velocity) {
+      if (in_step && s.cond_.any_control())
+        s.cond_.predict(p, s.vf_, Contact::has_torque ? &s.wf_ : nullptr, s.time_, s.dt_);
+    }
+    s.tracking_ = s.params_.track_dissipation && in_step;
+    if (s.tracking_) s.work_rows_.assign(p.size(), 0.0);
+  }
+
+  /// The loads of every entry of the neighbour list, in deterministic chunks of rows
+  /// (detail::run_paired_chunks: the same bits for any number of threads).
+  static void contact_loads(Sim& s) {
+    const long n = static_cast<long>(s.particles_.size());
+    const auto& list = s.list_;
+    // deterministic chunks: the chunk length depends on N and the list span only. At least a
+    // span (the rows of chunk c then write to chunks c and c + 1 only); two spans while that
+    // leaves 16 chunks or more (the rows of a chunk's last span have partners beyond it, which
+    // come from memory; fewer such rows measured 2 to 4 % faster at N = 1e5); at most 64 chunks.
+    const long span = static_cast<long>(list.max_span);
+    const long chunk = std::max({span, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
+    // the rows' own data and the partners beyond the chunk are requested some rows in advance
+    // if a span of particle data is too large for the caches (a layer of cells in 3D); with
+    // partners close by (a 2D row of cells) all of it is in the caches already
+    const long ahead =
+        static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
+    auto work = [&](long b, long e) { // entries and rows of rows [b, e)
+      return static_cast<double>(list.offsets[e] - list.offsets[b]) +
+             static_cast<double>(list.wall_offsets[e] - list.wall_offsets[b]) +
+             static_cast<double>(e - b);
+    };
+    detail::run_paired_chunks(
+        n, chunk, work, [&](long b, long e) { contact_rows(s, b, e, ahead, span); },
+        n >= parallel_threshold);
+  }
+
+  /// Adds gravity and global damping (unless the fused pass has `prefilled` them), convection,
+  /// the prescribed loads and heat of groups, and removes the restrained components.
+  static void add_global_loads(Sim& s, double t, bool prefilled) {
+    auto& p = s.particles_;
+    const long n = static_cast<long>(p.size());
+    const auto loads = s.global_loads(t);
+    const V g = std::get<0>(loads);
+    const double ct = std::get<1>(loads), cr = std::get<2>(loads);
+    const bool spins = s.spins_(); // rotational damping acts wherever angular velocities move
+    if (s.tracking_) damping_work(s, t, ct, cr, spins);
+    if (prefilled) {
+      // gravity and global damping are already in the force arrays (fused pass)
+    } else if (!s.mass_damping_) {
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) {
+        p.force[i] += p.mass[i] * g - ct * s.force_velocity()[i];
+        if (spins) p.torque[i] -= cr * s.force_omega()[i];
+      }
+    } else {
+      const V dv = s.mass_damping_->first(t);
+      const A dw = s.mass_damping_->second(t);
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) {
+        const V& v = s.force_velocity()[i];
+        p.force[i] += p.mass[i] * (g - dv.cwiseProduct(v)) - ct * v;
+        if (spins) {
+          const A& w = s.force_omega()[i];
+          if constexpr (D == 2)
+            p.torque[i] -= cr * w + p.inertia[i] * dw * w;
+          else
+            p.torque[i] -= cr * w + p.inertia[i] * dw.cwiseProduct(w);
+        }
+      }
+    }
+    if (s.heat_on_) Heat::add_convection(s);
+    if (s.cond_.any_prescribed()) {
+      s.cond_.add_loads(p, t);
+      if constexpr (thermal)
+        if (s.heat_on_) s.cond_.add_heat(p, t, [&](double r) { return s.surface_area(r); });
+    }
+    if (s.cond_.any_control()) s.cond_.restrain_loads(p);
+  }
+
+  /// Energy tracking: adds the power of the global damping (negative: it removes energy) to the
+  /// rows' power and the work of the step to the total.
+  static void damping_work(Sim& s, double t, double ct, double cr, bool spins) {
+    const auto& p = s.particles_;
+    const long n = static_cast<long>(p.size());
+    const V dv = s.mass_damping_ ? V(s.mass_damping_->first(t)) : V(V::Zero());
+    const A dw = s.mass_damping_ ? A(s.mass_damping_->second(t)) : zero<A>();
+    for (long i = 0; i < n; ++i) {
+      const V& v = s.force_velocity()[i];
+      double w = -ct * v.squaredNorm() - p.mass[i] * v.dot(dv.cwiseProduct(v));
+      if (spins) {
+        const A& o = s.force_omega()[i];
+        if constexpr (D == 2)
+          w -= cr * o * o + p.inertia[i] * dw * o * o;
+        else
+          w -= cr * o.squaredNorm() + p.inertia[i] * o.dot(dw.cwiseProduct(o));
+      }
+      s.work_rows_[static_cast<std::size_t>(i)] += w;
+    }
+    double sum = 0.0;
+    for (double w : s.work_rows_)
+      sum += w;
+    s.work_in_ += sum * s.dt_;
+  }
+
+  /// What the contact law of a list entry reads: the effective properties of the pair (per entry
+  /// with variable properties) and its resolved contact parameters. Every evaluation of a
+  /// contact (this pass, the conductances across gaps, for_each_contact, for_each_conductance)
+  /// takes them from `pair_law` or `wall_law`, and calls `evaluate` and `conductance`.
+  struct Law {
+    const PairProperties& pair;
+    const typename Contact::Params& params;
+  };
+  /// The law of pair entry e, between particles i and j.
+  GRAIN_INLINE static Law pair_law(const Sim& s, std::size_t e, std::size_t i, std::size_t j) {
+    const auto& p = s.particles_;
+    const std::size_t k = s.table_.index(p.material[i], p.material[j]);
+    return {s.vprops_.per_particle ? s.pair_cache_[e] : s.table_.properties(k),
+            s.table_.resolved(k)};
+  }
+  /// The law of wall entry e, between particle i and wall w.
+  GRAIN_INLINE static Law wall_law(const Sim& s, std::size_t e, std::size_t i, std::size_t w) {
+    const std::size_t k = s.table_.index(s.particles_.material[i], s.walls_[w].options.material);
+    return {s.vprops_.per_particle ? s.wall_pair_cache_[e] : s.table_.properties(k),
+            s.table_.resolved(k)};
+  }
+  /// The contact law at geometry g; advances the history h.
+  GRAIN_INLINE static auto evaluate(const Sim& s, const ContactGeometry<D>& g, const Law& law,
+                                    History& h) {
+    return Contact::evaluate(g, law.pair, law.params, h, s.dt_);
+  }
+  /// The conductance [W/K] of a touching contact with result r of `evaluate`.
+  template <class R>
+  GRAIN_INLINE static double conductance(const Sim& s, const ContactGeometry<D>& g, const Law& law,
+                                         const R& r, History& h, double cell_radius) {
+    return Contact::conductance(g, law.pair, r.normal, law.params, h, s.dt_, Heat::length(s),
+                                cell_radius);
+  }
+
+  /// Requests the data that row i reads of its partners at or beyond `end` (the next chunk's
+  /// particles, not yet rows in this sweep), so that their cache misses overlap with the work of
+  /// the rows before it. Read intent only: a partner may belong to another thread's chunk.
+  GRAIN_INLINE static void prefetch_row(const Sim& s, std::size_t i, std::size_t end) {
+    for (const auto e : s.list_.pair_entries(i)) {
+      const auto j = s.list_.partners[e];
+      if (j >= end) prefetch_particle<0>(s, j);
+    }
+  }
+
+  /// Requests the data of row i itself: its particle's state and loads, the start of its list
+  /// entries and histories. These are sequential streams, but a row reads a dozen of them at
+  /// once, more than the hardware prefetchers follow: at N = 1e6 (from memory) they stalled the
+  /// rows (docs/performance.md).
+  GRAIN_INLINE static void prefetch_own(const Sim& s, std::size_t i) {
+    prefetch_particle<1>(s, i);
+    const auto e = s.list_.offsets[i]; // may be the end of the list (no entries left)
+    GRAIN_PREFETCH(s.list_.partners.data() + e, 0);
+    if constexpr (!Contact::template stateless<D>) {
+      GRAIN_PREFETCH(s.hist_.pair.data() + e, 1);
+      GRAIN_PREFETCH(s.hist_.pair.data() + std::min<std::size_t>(e + 2, s.hist_.pair.size()), 1);
+    }
+    // the rows' offsets into the list (read here, further ahead) and into the wall entries
+    GRAIN_PREFETCH(s.list_.offsets.data() + (i >= 2 * prefetch_rows ? i - 2 * prefetch_rows : 0),
+                   0);
+    GRAIN_PREFETCH(s.list_.wall_offsets.data() + i, 0);
+  }
+
+  /// The requests made at row ii of the rows [begin, end) of a chunk, run downwards: the own data
+  /// of the row 2 x `ahead` rows further down, and the partners beyond the chunk of the row
+  /// `ahead` rows further down if it is at or above `cold` (none below the chunk's first row).
+  GRAIN_INLINE static void request_ahead(const Sim& s, long ii, long ahead, long begin, long cold,
+                                         long end) {
+    if (ii - ahead >= begin) {
+      if (ii - ahead >= cold)
+        prefetch_row(s, static_cast<std::size_t>(ii - ahead), static_cast<std::size_t>(end));
+      if (ii - 2 * ahead >= begin) prefetch_own(s, static_cast<std::size_t>(ii - 2 * ahead));
+    }
+  }
+
+  /// Requests what a contact reads of particle k, with write intent (Write = 1, a row's own
+  /// particle) for the loads it adds. A request changes no data: near a chunk's end the row
+  /// ahead may be another thread's, which costs at most a cache line moved between cores.
+  template <int Write>
+  GRAIN_INLINE static void prefetch_particle(const Sim& s, std::size_t k) {
+    const auto& p = s.particles_;
+    GRAIN_PREFETCH(&p.position[k], 0);
+    GRAIN_PREFETCH(&p.material[k], 0);
+    GRAIN_PREFETCH(&p.radius[k], 0);
+    GRAIN_PREFETCH(&s.force_velocity()[k], 0);
+    GRAIN_PREFETCH(&p.force[k], Write);
+    if constexpr (Contact::has_torque) {
+      GRAIN_PREFETCH(&s.force_omega()[k], 0);
+      GRAIN_PREFETCH(&p.torque[k], Write);
+    }
+    GRAIN_PREFETCH(&p.mass[k], 0);
+    if constexpr (thermal) {
+      if (s.heat_on_) {
+        GRAIN_PREFETCH(&p.temperature[k], 0);
+        GRAIN_PREFETCH(&p.heat_rate[k], Write);
+      }
+    }
+  }
+
+  /// The contact of list entry e between particles i and j (j > i), which touch: geometry,
+  /// contact law, loads added to both (and heat).
+  GRAIN_INLINE static void pair_contact(Sim& s, std::uint32_t e, std::size_t i, std::uint32_t j) {
+    auto& p = s.particles_;
+    const auto& vf = s.force_velocity();
+    const auto& wf = s.force_omega();
+    ContactGeometry<D> gc; // local to the contact: kept in registers
+    s.pair_geometry_of(i, j, gc, vf, wf);
+    if constexpr (predicts_velocity && Contact::has_torque)
+      set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
+    const Law law = pair_law(s, e, i, j);
+    History& h = s.hist(s.hist_.pair, e);
+    auto r = evaluate(s, gc, law, h);
+    p.force[i] += r.force;
+    p.force[j] -= r.force;
+    if constexpr (Contact::has_torque) {
+      p.torque[i] += r.torque_i;
+      p.torque[j] += r.torque_j;
+    }
+    if (s.tracking_) {
+      double work = r.force.dot(vf[i] - vf[j]);
+      if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
+      s.work_rows_[i] += work;
+    }
+    if constexpr (thermal) {
+      if (s.heat_on_) {
+        const double H = conductance(s, gc, law, r, h, Heat::cell_radius_pair(s, e));
+        const double q = H * (p.temperature[j] - p.temperature[i]);
+        const double w = Heat::dissipation_heat(s, gc, r);
+        p.heat_rate[i] += q + w;
+        p.heat_rate[j] += w - q;
+      }
+    }
+  }
+
+  /// The wall entries of row i.
+  GRAIN_INLINE static void wall_contacts(Sim& s, std::size_t i) {
+    auto& p = s.particles_;
+    const auto& vf = s.force_velocity();
+    const auto& wf = s.force_omega();
+    [[maybe_unused]] const bool heat = s.heat_on_;
+    ContactGeometry<D> g;
+    for (const auto e : s.list_.wall_entries(i)) {
+      const auto w = s.list_.walls[e];
+      if (!s.touching_wall(i, w, g, vf, wf)) {
+        if constexpr (!Contact::template stateless<D>) s.hist_.wall[e] = History{};
+        s.wall_loads_.entries[e] = {};
+        if constexpr (Contact::indirect) {
+          if (heat && s.wall_conducts(w))
+            p.heat_rate[i] += Heat::gap_wall_conductance(s, i, w, e, g) *
+                              (s.walls_[w].temperature - p.temperature[i]);
+        }
+        continue;
+      }
+      if constexpr (predicts_velocity && Contact::has_torque)
+        set_slip_velocity<D>(g, s.walls_[w], p.velocity[i], p.omega[i]);
+      const Law law = wall_law(s, e, i, w);
+      History& h = s.hist(s.hist_.wall, e);
+      auto r = evaluate(s, g, law, h);
+      p.force[i] += r.force;
+      if constexpr (Contact::has_torque) {
+        p.torque[i] += r.torque_i;
+        s.wall_loads_.entries[e] = {r.force, g.point, A(r.torque_i - cross(g.arm_i, r.force))};
+      } else {
+        s.wall_loads_.entries[e] = {r.force, g.point, zero<A>()};
+      }
+      if (s.tracking_) {
+        double work = r.force.dot(vf[i] - s.walls_[w].velocity_at(g.point));
+        if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]);
+        s.work_rows_[i] += work;
+      }
+      if constexpr (thermal) {
+        if (heat) {
+          if (s.wall_conducts(w)) {
+            const double H = conductance(s, g, law, r, h, Heat::cell_radius_wall(s, e));
+            p.heat_rate[i] += H * (s.walls_[w].temperature - p.temperature[i]);
+          }
+          p.heat_rate[i] += Heat::dissipation_heat(s, g, r);
+        }
+      }
+    }
+  }
+
+  /// The contacts of rows [begin, end), from the last row down. Each row's loads are added to
+  /// both partners in the order of the list (the same order for any number of threads).
+  /// Going down, the partners of a row (j > i) in the chunk were rows a moment ago and are in
+  /// the caches: what comes from memory is the rows' own data, as sequential streams, and the
+  /// partners beyond the chunk of the rows of its last span (`ahead`: see request_ahead). Going
+  /// up instead, every row met a partner a layer of cells ahead for the first time in the step,
+  /// through the list (measured 1 to 5 % slower at N = 1e5 and 1e6, docs/performance.md).
+  static void contact_rows(Sim& s, long begin, long end, long ahead, long span) {
+    auto& p = s.particles_;
+    const long cold = std::max(begin, end - span); // rows with partners beyond the chunk
+    if constexpr (Contact::indirect) {
+      ContactGeometry<D> g;
+      [[maybe_unused]] const bool heat = s.heat_on_;
+      for (long ii = end - 1; ii >= begin; --ii) {
+        request_ahead(s, ii, ahead, begin, cold, end);
+        const auto i = static_cast<std::size_t>(ii);
+        for (const auto e : s.list_.pair_entries(i)) {
+          const auto j = s.list_.partners[e];
+          const double rs = p.radius[i] + p.radius[j];
+          if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+            pair_contact(s, e, i, j); // the geometry is made there, once
+            continue;
+          }
+          if constexpr (!Contact::template stateless<D>) s.hist_.pair[e] = History{};
+          if (heat) {
+            const double H = Heat::gap_pair_conductance(s, i, j, e, g);
+            const double q = H * (p.temperature[j] - p.temperature[i]);
+            p.heat_rate[i] += q;
+            p.heat_rate[j] -= q;
+          }
+        }
+        wall_contacts(s, i);
+      }
+    } else {
+      // a branch-free distance test over the entries of several rows, collecting the touching
+      // pairs; then the contact law for all of them in one loop (its length varies less than that
+      // of a row), then the walls of those rows. The history of a pair that no longer touches is
+      // cleared (written only if it is not blank already).
+      constexpr std::uint32_t capacity = 64;
+      std::uint32_t hit_entry[capacity], hit_row[capacity];
+      std::uint32_t nhit = 0;
+      long last = end; // rows [i, last) have their pairs collected, their walls pending
+      auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
+        for (std::uint32_t k = 0; k < nhit; ++k)
+          pair_contact(s, hit_entry[k], hit_row[k], s.list_.partners[hit_entry[k]]);
+        nhit = 0;
+      };
+      auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
+        laws();
+        for (long r = last - 1; r >= first; --r)
+          wall_contacts(s, static_cast<std::size_t>(r));
+        last = first;
+      };
+      auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
+                      double ri) GRAIN_INLINE_LAMBDA {
+        for (auto e = b; e < b_end; ++e) {
+          const auto j = s.list_.partners[e];
+          const double rs = ri + p.radius[j];
+          const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
+          hit_entry[nhit] = e;
+          hit_row[nhit] = i;
+          nhit += t;
+          if constexpr (!Contact::template stateless<D>) {
+            // no branch on the distance test: clearing a stale history is rare
+            const std::uint64_t stale = detail::byte_difference(s.hist_.pair[e], s.blank_history_) &
+                                        (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
+            if (stale != 0) [[unlikely]]
+              s.hist_.pair[e] = s.blank_history_;
+          }
+        }
+      };
+      for (long ii = end - 1; ii >= begin; --ii) {
+        request_ahead(s, ii, ahead, begin, cold, end);
+        const auto i = static_cast<std::uint32_t>(ii);
+        const auto r0 = s.list_.offsets[i], r1 = s.list_.offsets[i + 1];
+        const V xi = p.position[i];
+        const double ri = p.radius[i];
+        if (nhit + (r1 - r0) > capacity) {
+          flush(ii + 1);
+          if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
+            for (auto b = r0; b < r1; b += capacity) {
+              test(b, std::min(r1, b + capacity), i, xi, ri);
+              laws();
+            }
+            continue;
+          }
+        }
+        test(r0, r1, i, xi, ri);
+      }
+      flush(begin);
+    }
+  }
+};
+
+} // namespace grain::detail

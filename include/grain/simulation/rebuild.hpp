@@ -1,0 +1,208 @@
+#pragma once
+/// \file rebuild.hpp
+/// The neighbour rebuild of a Simulation: when the search says a new list is due (displacements
+/// against the skin, or its own schedule), the particles are re-sorted if the search orders
+/// them, the search builds the list, pairs a field excludes are dropped, and the contact
+/// histories carry over by particle identity; per-entry caches (variable properties, fluid
+/// cells) follow the new list.
+///
+/// A component of `Simulation` (simulation.hpp): static functions over the simulation's state,
+/// which declares it a friend.
+
+#include <grain/contact/history.hpp>
+#include <grain/core/error.hpp>
+#include <grain/core/stages.hpp>
+#include <grain/core/vector.hpp>
+#include <grain/search/search.hpp>
+#include <grain/simulation/components.hpp>
+#include <grain/simulation/parallel.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace grain::detail {
+
+template <class Sim>
+struct NeighbourRebuild {
+  using Contact = typename Sim::contact_type;
+  using V = typename Sim::V;
+  using A = typename Sim::A;
+  using History = typename Sim::History;
+  static constexpr int D = Sim::D;
+  static constexpr bool thermal = Sim::thermal;
+  static constexpr long parallel_threshold = Sim::parallel_threshold;
+  using SearchT = typename Sim::search_type;
+  using Histories = typename Sim::Histories;
+  static constexpr bool excluding_fields = Sim::excluding_fields;
+  using Heat = HeatStep<Sim>;
+
+  static void update_neighbors(Sim& s) {
+    ++s.steps_since_rebuild_;
+    bool far = true;
+    if (s.skin_ > 0.0) {
+      double d2 = s.prefilled_ ? s.fused_d2_ : -1.0;
+      if (d2 < 0.0) {
+        d2 = 0.0;
+        const auto& x = s.particles_.position;
+        const long n = static_cast<long>(x.size());
+#pragma omp parallel for reduction(max : d2) schedule(static) if (n >= parallel_threshold)
+        for (long i = 0; i < n; ++i)
+          d2 = std::max(d2, detail::nan_as_inf((x[i] - s.snapshot_[i]).squaredNorm()));
+      }
+      const double dp = std::sqrt(d2);
+      double dw = 0.0;
+      for (const auto& w : s.walls_)
+        dw = std::max(dw, w.displacement_since_snapshot(s.reach_));
+      far = 2.0 * dp >= s.skin_ || dp + dw >= s.skin_;
+    }
+    if (SearchT::due(s.params_.search, s.steps_since_rebuild_, far)) rebuild(s);
+  }
+
+  /// Throws naming the first pair of listed particles at the same centre: their contact has no
+  /// normal (InputError before the first step, NumericalError later).
+  static void require_distinct_centres(const Sim& s) {
+    const auto& p = s.particles_;
+    for (std::size_t i = 0; i + 1 < s.list_.offsets.size(); ++i)
+      for (const auto e : s.list_.pair_entries(i)) {
+        const auto j = s.list_.partners[e];
+        if (p.position[i] != p.position[j]) [[likely]]
+          continue;
+        const std::string what = "Simulation: s.particles " + std::to_string(p.id[i]) + " and " +
+                                 std::to_string(p.id[j]) + " have the same centre (" +
+                                 detail::vector_text(p.position[i]) +
+                                 ") m at t = " + detail::to_text(s.time_) +
+                                 " s; their contact has no normal. Valid: distinct centres";
+        if (s.initialized_) throw NumericalError(what);
+        throw InputError(what);
+      }
+  }
+
+  static void rebuild(Sim& s) {
+    auto& p = s.particles_;
+    const std::size_t n = p.size();
+    s.find_fixed();
+    s.require_finite_state(); // a non-finite position has no cell
+    s.collect_wall_loads();   // the loads of the last evaluation outlive the list entries
+    NeighborList old = std::move(s.list_);
+    Histories old_hist = std::move(s.hist_);
+    // the new list will be about as long as the old one (one allocation instead of doublings)
+    s.list_.partners.reserve(old.partners.size() + old.partners.size() / 16);
+    // only the entries with a history are looked up: the others go before the new list is made
+    // (the peak memory of a rebuild holds both lists)
+    old_hist.shrink_to_contacts(old);
+    std::vector<std::uint32_t> perm;
+    const double reach = s.skin_ + s.cutoff_;
+    if constexpr (search::Reorders<SearchT, D>) {
+      perm = SearchT::order(s.params_.search, p, reach, s.r_max_);
+      if (!perm.empty()) {
+        p.permute(perm);
+        s.permute_fields(perm);
+        s.vprops_.permute(perm);
+        if (s.prefilled_) {
+          s.permute_values(s.vf_, perm);
+          if constexpr (Contact::has_torque) s.permute_values(s.wf_, perm);
+        }
+      }
+    }
+    SearchT::build(s.params_.search, p, s.walls_, reach, s.r_max_, s.list_);
+    if constexpr (!search::builtin<SearchT>) search::require_valid_list(s.list_, n, SearchT::name);
+    if constexpr (excluding_fields) drop_excluded_pairs(s);
+    require_distinct_centres(s);
+    // carry the histories of the old list over, by particle identity (origin_ maps the indices
+    // after a removal or activation to those of the old list)
+    const bool mapped = !s.origin_.empty();
+    if (old.rows() == n || (mapped && old.rows() > 0)) {
+      auto old_of = [&](std::size_t k) -> std::uint32_t {
+        const std::size_t k0 = perm.empty() ? k : perm[k];
+        return mapped ? s.origin_[k0] : static_cast<std::uint32_t>(k0);
+      };
+      s.hist_.carry_over(
+          old, old_hist, s.list_, old_of, [](History& h) { Contact::template reverse<D>(h); },
+          parallel_threshold);
+    } else {
+      s.hist_.reset(s.list_);
+    }
+    s.snapshot_ = p.position;
+    s.wall_loads_.reset(s.list_.walls.size());
+    // reach of a plane rotation: farthest particle from any wall pivot
+    s.reach_ = 0.0;
+    for (const auto& w : s.walls_) {
+      for (const auto& x : p.position)
+        s.reach_ = std::max(s.reach_, (x - w.pivot).norm());
+    }
+    s.reach_ += 2.0 * s.r_max_ + s.skin_;
+    for (auto& w : s.walls_)
+      w.take_snapshot();
+    s.steps_since_rebuild_ = 0;
+    ++s.counters_.rebuilds;
+    if (!perm.empty() || !s.origin_.empty()) s.groups_dirty_ = true;
+    s.origin_.clear();
+    if (s.vprops_.per_particle) refresh_pair_cache(s);
+    if (s.heat_on_) Heat::update_cells(s);
+  }
+
+  /// Keeps the particles `kept` names (ascending old indices), with their fields and pair
+  /// overrides, renumbered 0 .. kept.size() - 1.
+  static void keep_particles(Sim& s, const std::vector<std::uint32_t>& kept) {
+    s.particles_.permute(kept);
+    s.permute_fields(kept);
+    s.vprops_.permute(kept);
+    s.groups_dirty_ = true;
+  }
+
+  /// Contact constants of every list entry from the particles' current properties.
+  static void refresh_pair_cache(Sim& s) {
+    const auto& p = s.particles_;
+    const std::size_t n = p.size();
+    std::vector<Material> eff(n);
+    for (std::size_t i = 0; i < n; ++i)
+      eff[i] = s.material_of(i);
+    s.pair_cache_.resize(s.list_.partners.size());
+    s.wall_pair_cache_.resize(s.list_.walls.size());
+    const long nl = static_cast<long>(n);
+#pragma omp parallel for schedule(static) if (nl >= parallel_threshold)
+    for (long i = 0; i < nl; ++i) {
+      const auto mi = p.material[i];
+      for (const auto e : s.list_.pair_entries(i)) {
+        const auto j = s.list_.partners[e];
+        s.pair_cache_[e] = s.table_.mix_of(eff[i], eff[j], s.table_.index(mi, p.material[j]));
+      }
+      for (const auto e : s.list_.wall_entries(i)) {
+        const auto mw = s.walls_[s.list_.walls[e]].options.material;
+        s.wall_pair_cache_[e] =
+            s.table_.mix_of(eff[i], s.table_.material(mw), s.table_.index(mi, mw));
+      }
+    }
+  }
+
+  /// Removes the pairs that a field excludes (two members of the same clump: rigid, they never
+  /// act on each other) from the list. The largest index span is kept (an upper bound is all the
+  /// chunking needs).
+  static void drop_excluded_pairs(Sim& s) {
+    auto excluded = [&](std::size_t i, std::size_t j) {
+      return std::apply(
+          [&](const auto&... f) { return (detail::field_excludes(f[i], f[j]) || ... || false); },
+          s.fields_);
+    };
+    std::uint32_t out = 0, begin = s.list_.offsets[0];
+    for (std::size_t i = 0; i + 1 < s.list_.offsets.size(); ++i) {
+      const std::uint32_t end = s.list_.offsets[i + 1];
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const auto j = s.list_.partners[e];
+        if (excluded(i, j)) continue;
+        s.list_.partners[out++] = j;
+      }
+      begin = end;
+      s.list_.offsets[i + 1] = out;
+    }
+    s.list_.partners.resize(out);
+  }
+};
+
+} // namespace grain::detail
