@@ -628,53 +628,11 @@ public:
 
   // ---------------------------------------------------------------- time step
   /// Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest particle [s].
-  double rayleigh_time() const {
-    double t = std::numeric_limits<double>::infinity();
-    for_each_size([&](double r, std::uint32_t k, double) {
-      t = std::min(t, time_step::rayleigh(r, bounding_material(k)));
-    });
-    return t;
-  }
+  double rayleigh_time() const { return Limits::rayleigh_time(*this); }
 
   /// Contact-stiffness limit 2 sqrt(m*/k) of the stiffest, lightest contact that can occur [s]
   /// (the stability limit of the undamped oscillator for the symplectic schemes).
-  double contact_time_step() const {
-    if (particles_.size() + life_.pending.size() == 0)
-      return std::numeric_limits<double>::infinity();
-    const double v = reference_speed();
-    double t = std::numeric_limits<double>::infinity();
-    // smallest particle of each material
-    const auto nm = table_.size();
-    std::vector<double> rmin(nm, std::numeric_limits<double>::infinity()), mmin(nm, 0.0);
-    for_each_size([&](double r, std::uint32_t k, double mass) {
-      if (r < rmin[k]) {
-        rmin[k] = r;
-        mmin[k] = mass;
-      }
-    });
-    std::vector<bool> wall_material(nm, false);
-    for (const auto& w : walls_)
-      wall_material[w.options.material] = true;
-    for (std::size_t a = 0; a < nm; ++a) {
-      if (!std::isfinite(rmin[a])) continue;
-      for (std::size_t b = 0; b < nm; ++b) {
-        const bool pair = std::isfinite(rmin[b]);
-        if (pair) {
-          const double re = rmin[a] * rmin[b] / (rmin[a] + rmin[b]);
-          const double me = mmin[a] * mmin[b] / (mmin[a] + mmin[b]);
-          const double k =
-              Contact::stiffness_estimate(bounding_pair(a, b), contact_params(a, b), re, me, v);
-          t = std::min(t, time_step::oscillator(me, k));
-        }
-        if (wall_material[b]) {
-          const double k = Contact::stiffness_estimate(bounding_pair(a, b), contact_params(a, b),
-                                                       rmin[a], mmin[a], v);
-          t = std::min(t, time_step::oscillator(mmin[a], k));
-        }
-      }
-    }
-    return t;
-  }
+  double contact_time_step() const { return Limits::contact_time_step(*this); }
 
   /// Mechanical critical time step: min(Rayleigh time, contact limit) [s].
   double mechanical_time_step() const { return std::min(rayleigh_time(), contact_time_step()); }
@@ -682,37 +640,13 @@ public:
   /// Thermal time scale of the particles, min R^2 rho c / k [s] (infinite without conduction):
   /// the time heat takes to diffuse across a particle. The automatic time step stays below
   /// `auto_time_step_factor` times it.
-  double thermal_time_step() const {
-    double t = std::numeric_limits<double>::infinity();
-    if constexpr (thermal) {
-      for_each_size([&](double r, std::uint32_t k, double) {
-        t = std::min(t, time_step::diffusion(r, bounding_material(k)));
-      });
-    }
-    return t;
-  }
+  double thermal_time_step() const { return Limits::thermal_time_step(*this); }
 
   /// Stability limit of the explicit temperature update over the contacts of the current
   /// neighbour list (after initialisation; infinite before): min over particles of
   /// C_i / (sum_j H_ij + h_i S_i / 2) [s], h_i S_i the convective conductance (see
   /// simulation/time_step.hpp).
-  double conduction_time_step() const {
-    double t = std::numeric_limits<double>::infinity();
-    if constexpr (thermal) {
-      if (list_.rows() != particles_.size() || !heats()) return t;
-      std::vector<double> h(particles_.size(), 0.0);
-      for_each_conductance([&](std::size_t i, std::size_t j, bool wall, double H) {
-        h[i] += H;
-        if (!wall) h[j] += H;
-      });
-      // convection adds h S to the diagonal of C^-1 L only: half of it to the row sum
-      if constexpr (ConvectionT::active)
-        for (std::size_t i = 0; i < h.size(); ++i)
-          h[i] += 0.5 * Heat::convection_conductance(*this, i);
-      t = time_step::conduction(particles_.heat_capacity, h);
-    }
-    return t;
-  }
+  double conduction_time_step() const { return Limits::conduction_time_step(*this); }
 
   /// The critical time step [s]: the mechanical one if forces move particles (a moving analysis
   /// with at least one particle that is not fixed, present or to come), and the conduction limit
@@ -759,92 +693,19 @@ public:
     // a re-initialisation (after adding particles, walls or materials) continues the time
     time_offset_ = time_;
     step0_ = step_;
-    if (table_.empty() && (particles_.size() > 0 || !walls_.empty()))
-      throw InputError("Simulation: no material was added; add_material() first");
-    if constexpr (thermal) {
-      if (heats()) {
-        for (std::size_t i = 0; i < particles_.size(); ++i) {
-          const Material& m = table_.material(particles_.material[i]);
-          if (!(m.heat_capacity > 0))
-            throw InputError("Material '" + m.name +
-                             "': heat_capacity = " + detail::to_text(m.heat_capacity) +
-                             " J/(kg K) is invalid for a particle of a thermal simulation; valid "
-                             "range: (0, inf) J/(kg K)");
-        }
-      }
-    }
+    check_materials();
     apply_variable_properties(true);
-    // the largest radius present or to come (the actual radii: for_each_size gives the smallest
-    // radii of the time-step estimate when a radius varies)
-    r_max_ = 0.0;
-    for (double r : particles_.radius)
-      r_max_ = std::max(r_max_, r);
-    for (const auto& s : life_.pending)
-      r_max_ = std::max(r_max_, s.radius);
-    r_max_ = std::max(r_max_, vprops_.largest_radius());
-    skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
-    heat_on_ = heats();
-    cutoff_ = heats() ? largest_cutoff() : 0.0;
+    size_search();
     for (auto& w : walls_) {
       w.update_temperature(time_);
       w.update_motion(time_);
     }
     if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
-    origin_.clear();
-    // particles added since the last build were appended: the old rows keep their indices, so
-    // the contact histories of the old pairs carry over; particles removed since then are
-    // taken out here
-    std::vector<std::uint32_t> kept(particles_.size());
-    std::iota(kept.begin(), kept.end(), 0u);
-    const bool renumbered = !life_.removal_requests.empty();
-    if (renumbered) {
-      collect_wall_loads(); // before the particles are renumbered
-      std::sort(life_.removal_requests.begin(), life_.removal_requests.end());
-      std::erase_if(kept, [&](std::uint32_t i) {
-        return std::binary_search(life_.removal_requests.begin(), life_.removal_requests.end(),
-                                  particles_.id[i]);
-      });
-      life_.removal_requests.clear();
-      Neighbours::keep_particles(*this, kept);
-    }
-    if (list_.rows() > 0 && (list_.rows() < particles_.size() || renumbered)) {
-      origin_.assign(particles_.size(), none);
-      for (std::size_t i = 0; i < kept.size(); ++i)
-        if (kept[i] < list_.rows()) origin_[i] = kept[i];
-    }
-    Neighbours::rebuild(*this);
+    Neighbours::initial_build(*this);
     ensure_groups();
     cond_.restrain_velocities(particles_);
     if constexpr (thermal) cond_.fix_temperatures(particles_, time_);
-    const double critical = critical_time_step();
-    if (params_.time_step > 0.0) {
-      // forward Euler of the temperatures is stable only strictly below the conduction limit
-      // (at it, the difference of two particles flips sign each step without decaying)
-      const bool at_conduction_limit = heats() && params_.time_step == conduction_time_step();
-      if (params_.time_step > critical || at_conduction_limit) {
-        std::string why;
-        if (forces_move())
-          why += "Rayleigh time " + detail::to_text(rayleigh_time()) +
-                 " s, contact limit 2 sqrt(m*/k) = " + detail::to_text(contact_time_step()) + " s";
-        if (heats())
-          why += std::string(why.empty() ? "" : ", ") + "conduction limit min C_i / sum H_ij = " +
-                 detail::to_text(conduction_time_step()) + " s";
-        throw InputError("Simulation: time_step = " + detail::to_text(params_.time_step) +
-                         (at_conduction_limit ? " s is at the conduction limit"
-                                              : " s is above the stable limit") +
-                         "; valid range: (0, " + detail::to_text(critical) +
-                         (at_conduction_limit ? ") s (" : "] s (") + why + ")");
-      }
-      dt_ = params_.time_step;
-    } else {
-      double t = critical;
-      if (heats()) t = std::min(t, thermal_time_step());
-      if (!std::isfinite(t))
-        throw InputError("Simulation: time_step = 0 (automatic) needs particles (and, in a "
-                         "thermal analysis, conducting contacts) to estimate it; valid range: "
-                         "(0, inf) s");
-      dt_ = params_.auto_time_step_factor * t;
-    }
+    dt_ = Limits::choose(*this);
     if constexpr (thermal) {
       if (analysis() == Analysis::thermal) Heat::store_conductances(*this);
     }
@@ -871,6 +732,41 @@ public:
   /// Advances one time step.
   void step() { advance(false); }
 
+private:
+  /// Throws InputError if particles or walls have no material, or a particle of a heated
+  /// simulation no heat capacity.
+  void check_materials() const {
+    if (table_.empty() && (particles_.size() > 0 || !walls_.empty()))
+      throw InputError("Simulation: no material was added; add_material() first");
+    if constexpr (thermal) {
+      if (heats()) {
+        for (std::size_t i = 0; i < particles_.size(); ++i) {
+          const Material& m = table_.material(particles_.material[i]);
+          if (!(m.heat_capacity > 0))
+            throw InputError("Material '" + m.name +
+                             "': heat_capacity = " + detail::to_text(m.heat_capacity) +
+                             " J/(kg K) is invalid for a particle of a thermal simulation; valid "
+                             "range: (0, inf) J/(kg K)");
+        }
+      }
+    }
+  }
+  /// The largest radius present or to come, the skin and the conduction cutoff of the search.
+  void size_search() {
+    // the largest radius present or to come (the actual radii: for_each_size gives the smallest
+    // radii of the time-step estimate when a radius varies)
+    r_max_ = 0.0;
+    for (double r : particles_.radius)
+      r_max_ = std::max(r_max_, r);
+    for (const auto& s : life_.pending)
+      r_max_ = std::max(r_max_, s.radius);
+    r_max_ = std::max(r_max_, vprops_.largest_radius());
+    skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
+    heat_on_ = heats();
+    cutoff_ = heats() ? largest_cutoff() : 0.0;
+  }
+
+public:
   /// True if an exception left the state part-way through a step (particles drifted, loads or
   /// histories partly updated, the time not advanced): stepping and saving a checkpoint then
   /// throw InputError; loading a checkpoint continues from whole steps.
@@ -1259,36 +1155,6 @@ private:
       s += detail::to_text(v[d]) + (d + 1 < D ? ", " : ")");
     return s;
   }
-  /// Visits (radius, material, mass) of every active and inactive particle.
-  /// With variable properties, the smallest radius and density and the largest Young's modulus
-  /// their tables reach bound these values (for the time step).
-  template <class F>
-  void for_each_size(F&& f) const {
-    const auto bound = vprops_.radius_bound();
-    const double rb = bound.first;
-    const bool bounded = bound.second;
-    auto visit = [&](double r, std::uint32_t k, double mass) {
-      if (bounded) {
-        const double r2 = std::min(r, rb);
-        mass = std::min(mass * shape_.volume(r2) / shape_.volume(r),
-                        bounding_material(k).density * shape_.volume(r2));
-        r = r2;
-      }
-      f(r, k, mass);
-    };
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      visit(particles_.radius[i], particles_.material[i], particles_.mass[i]);
-    for (const auto& s : life_.pending)
-      visit(s.radius, s.material, table_.material(s.material).density * shape_.volume(s.radius));
-  }
-  Material bounding_material(std::uint32_t k) const {
-    return vprops_.bounding_material(table_.material(k));
-  }
-  PairProperties bounding_pair(std::uint32_t a, std::uint32_t b) const {
-    if (vprops_.empty()) return pair_properties(a, b);
-    return PairProperties::mix(bounding_material(a), bounding_material(b),
-                               table_.override_of(a, b));
-  }
   bool has_particle(std::int64_t id) const {
     if (is_active(id)) return true;
     for (const auto& s : life_.pending)
@@ -1316,16 +1182,6 @@ private:
     return cond_.any_prescribed() || !cond_.linear_motion.empty() ||
            !cond_.angular_motion.empty() || !cond_.restraints.empty() ||
            !cond_.temperatures.empty();
-  }
-  double reference_speed() const {
-    double v = 0.0;
-    for (const auto& u : particles_.velocity)
-      v = std::max(v, u.norm());
-    for (const auto& s : life_.pending)
-      v = std::max(v, s.velocity.norm());
-    for (const auto& w : walls_)
-      v = std::max(v, w.options.velocity.norm());
-    return std::max(params_.reference_velocity, 2.0 * v);
   }
 
   static History history_at(const std::vector<History>& h, std::size_t e) {
@@ -1573,12 +1429,14 @@ private:
   using Neighbours = detail::NeighbourRebuild<Simulation>;
   using Life = detail::LifecycleStep<Simulation>;
   using Diag = detail::Diagnostics<Simulation>;
+  using Limits = detail::TimeStepLimits<Simulation>;
   friend Pass;
   friend Heat;
   friend Motion;
   friend Neighbours;
   friend Life;
   friend Diag;
+  friend Limits;
 
   StageTuple stages_{};
   typename FieldStore::type fields_{};

@@ -12,6 +12,7 @@
 /// | `NeighbourRebuild<Sim>` | rebuild.hpp      | when and how the neighbour list is rebuilt      |
 /// | `LifecycleStep<Sim>`  | lifecycle.hpp      | removal and activation of particles             |
 /// | `Diagnostics<Sim>`    | diagnostics.hpp    | read-only visits of contacts and conductances   |
+/// | `TimeStepLimits<Sim>` | time_step.hpp      | the stable limits and the step of a run         |
 ///
 /// The components that own data and need no simulation (tested on their own) are the contact
 /// history store (contact/history.hpp), the pair table (pair_table.hpp), the lifecycle decision
@@ -32,5 +33,7 @@ template <class Sim>
 struct LifecycleStep;
 template <class Sim>
 struct Diagnostics;
+template <class Sim>
+struct TimeStepLimits;
 
 } // namespace grain::detail

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -73,7 +74,7 @@ struct NeighbourRebuild {
         const auto j = s.list_.partners[e];
         if (p.position[i] != p.position[j]) [[likely]]
           continue;
-        const std::string what = "Simulation: s.particles " + std::to_string(p.id[i]) + " and " +
+        const std::string what = "Simulation: particles " + std::to_string(p.id[i]) + " and " +
                                  std::to_string(p.id[j]) + " have the same centre (" +
                                  detail::vector_text(p.position[i]) +
                                  ") m at t = " + detail::to_text(s.time_) +
@@ -145,6 +146,36 @@ struct NeighbourRebuild {
     s.origin_.clear();
     if (s.vprops_.per_particle) refresh_pair_cache(s);
     if (s.heat_on_) Heat::update_cells(s);
+  }
+
+  /// The build of an initialisation: carries out the removals requested since the last build
+  /// (remove_particle before a run), maps the rows of the old list to the current particles
+  /// (those added since were appended) so that the histories of the old pairs carry over, and
+  /// rebuilds.
+  static void initial_build(Sim& s) {
+    s.origin_.clear();
+    // particles added since the last build were appended: the old rows keep their indices, so
+    // the contact histories of the old pairs carry over; particles removed since then are
+    // taken out here
+    std::vector<std::uint32_t> kept(s.particles_.size());
+    std::iota(kept.begin(), kept.end(), 0u);
+    const bool renumbered = !s.life_.removal_requests.empty();
+    if (renumbered) {
+      s.collect_wall_loads(); // before the particles are renumbered
+      std::sort(s.life_.removal_requests.begin(), s.life_.removal_requests.end());
+      std::erase_if(kept, [&](std::uint32_t i) {
+        return std::binary_search(s.life_.removal_requests.begin(), s.life_.removal_requests.end(),
+                                  s.particles_.id[i]);
+      });
+      s.life_.removal_requests.clear();
+      keep_particles(s, kept);
+    }
+    if (s.list_.rows() > 0 && (s.list_.rows() < s.particles_.size() || renumbered)) {
+      s.origin_.assign(s.particles_.size(), Sim::none);
+      for (std::size_t i = 0; i < kept.size(); ++i)
+        if (kept[i] < s.list_.rows()) s.origin_[i] = kept[i];
+    }
+    rebuild(s);
   }
 
   /// Keeps the particles `kept` names (ascending old indices), with their fields and pair
