@@ -426,3 +426,53 @@ TEST_CASE("variable properties: radii, masses and per-particle contact values") 
   CHECK(vp.radius_bound().first == 0.01);
   CHECK(vp.radius_bound().second);
 }
+
+TEST_CASE("paired chunks: every chunk once, each item's writes in the same order on any team") {
+  // rows [0, n) in chunks of `chunk`; the rows of chunk c write to the items of chunks c and
+  // c + 1, as the contact pass does (partners at most a chunk ahead)
+  const long n = 1000, chunk = 60;
+  const long nchunks = (n + chunk - 1) / chunk;
+  auto log_of = [&](bool parallel) {
+    std::vector<std::vector<long>> log(static_cast<std::size_t>(n));
+    std::vector<int> runs(static_cast<std::size_t>(nchunks), 0);
+    grain::detail::run_paired_chunks(
+        n, chunk, [](long b, long e) { return static_cast<double>(e - b); },
+        [&](long b, long e) {
+          const long c = b / chunk;
+          ++runs[static_cast<std::size_t>(c)];
+          for (long k = b; k < std::min(n, e + chunk); ++k)
+            log[static_cast<std::size_t>(k)].push_back(c);
+        },
+        parallel);
+    for (int r : runs)
+      CHECK(r == 1);
+    return log;
+  };
+  const auto serial = log_of(false), team = log_of(true);
+  CHECK(serial == team);
+  // an item of chunk k > 0 hears from chunks k - 1 and k, the even one first
+  for (long k = chunk; k < n; ++k) {
+    const long c = k / chunk;
+    const auto& l = serial[static_cast<std::size_t>(k)];
+    REQUIRE(l.size() == 2);
+    CHECK(l[0] % 2 == 0);
+    CHECK(std::set<long>(l.begin(), l.end()) == std::set<long>{c - 1, c});
+  }
+}
+
+TEST_CASE("contacts are visited between a set-up change and the next run") {
+  // particles added after a run have no row in the list until the next initialisation: the
+  // visits cover the listed particles (the new one touches nothing yet)
+  Sim<search::CellList> sim({.time_step = 2e-6, .gravity = Vec3(0, 0, -9.81)});
+  pile(sim);
+  sim.steps(10);
+  const auto before = sim.contact_counts();
+  REQUIRE(before.first + before.second > 0);
+  sim.add_particle({.position = Vec3(0, 0, 1.0), .radius = 1e-3, .material = 0});
+  CHECK(sim.contact_counts() == before);
+  std::size_t visited = 0;
+  sim.for_each_contact([&](auto, auto, bool, const auto&, const auto&) { ++visited; });
+  CHECK(visited == before.first + before.second);
+  sim.steps(1); // re-initialised: the new particle has its row
+  CHECK(sim.neighbor_list().rows() == sim.size());
+}
