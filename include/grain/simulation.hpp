@@ -53,6 +53,7 @@
 #include <grain/particles/storage.hpp>
 #include <grain/search/search.hpp>
 #include <grain/simulation/components.hpp>
+#include <grain/simulation/conditions_api.hpp>
 #include <grain/simulation/contact_pass.hpp>
 #include <grain/simulation/diagnostics.hpp>
 #include <grain/simulation/heat.hpp>
@@ -94,7 +95,9 @@
 
 namespace grain {
 template <class Shape, class SearchT, class Contact, class... Options>
-class Simulation {
+class Simulation
+    : public detail::GroupsAndConditions<Simulation<Shape, SearchT, Contact, Options...>,
+                                         detail::dimension_of<Shape>> {
   static_assert((detail::is_option<Options>::value && ...),
                 "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
                 "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
@@ -241,117 +244,13 @@ public:
 
   /// Adds a particle; returns its id. Throws InputError on bad input. A particle with a creation
   /// time later than the current time waits, inactive, until then.
-  std::int64_t add_particle(const ParticleSpec<D>& spec) {
-    ParticleSpec<D> s = spec;
-    s.id = s.id >= 0 ? s.id : next_id_;
-    const std::int64_t id = s.id;
-    const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
-    // ids below next_id_ may be taken (an id at or above it is new)
-    if (id < next_id_ && (has_particle(id) || life_.was_removed(id)))
-      throw InputError(obj + ": id = " + std::to_string(id) +
-                       " is invalid; valid: an id no other particle has or had (or -1 = next "
-                       "free id)");
-    // messages are formatted only for bad input (adding a particle must stay cheap)
-    if (!all_finite(s.position))
-      detail::require(false, obj, "position", to_text(s.position), "finite coordinates");
-    detail::require_positive(obj, "radius", s.radius);
-    if (!all_finite(s.velocity))
-      detail::require(false, obj, "velocity", to_text(s.velocity), "finite components");
-    detail::require(all_finite(s.omega), obj, "omega", "(non-finite)", "finite components");
-    table_.check_material(s.material, obj);
-    detail::require(!std::isnan(s.creation_time) &&
-                        s.creation_time < std::numeric_limits<double>::infinity(),
-                    obj, "creation_time", s.creation_time, "[-inf, inf) s");
-    if (!(s.destruction_time > s.creation_time))
-      detail::require(false, obj, "destruction_time", s.destruction_time,
-                      "(creation_time, inf] = (" + detail::to_text(s.creation_time) + ", inf] s");
-    if (!(s.destruction_time > time_))
-      detail::require(false, obj, "destruction_time", s.destruction_time,
-                      "(current time, inf] = (" + detail::to_text(time_) + ", inf] s");
-    if constexpr (thermal) {
-      const double t = std::isnan(s.temperature) ? params_.initial_temperature : s.temperature;
-      detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
-      s.temperature = t;
-    } else {
-      if (!std::isnan(s.temperature))
-        throw InputError(obj + ": temperature = " + detail::to_text(s.temperature) +
-                         " K is given but the contact has no conduction model; valid: leave it "
-                         "unset, or give the Interaction a conduction model");
-    }
-    next_id_ = std::max(next_id_, id + 1);
-    if (std::isfinite(s.destruction_time)) life_.doomed.push_back({s.destruction_time, id});
-    if (s.creation_time > time_) {
-      life_.pending.push_back(s);
-    } else {
-      append_particle(s);
-      groups_dirty_ = true;
-    }
-    initialized_ = false;
-    return id;
-  }
+  std::int64_t add_particle(const ParticleSpec<D>& spec) { return Life::add_particle(*this, spec); }
 
   /// Removes the particle with this id (active or not yet created) with its contacts, now:
   /// between runs, or before the first. Its id is not used again (removed_ids). Throws
   /// InputError for an id that is not a particle of the simulation.
-  void remove_particle(std::int64_t id) {
-    if (life_.is_pending(id)) {
-      std::erase_if(life_.pending, [&](const ParticleSpec<D>& s) { return s.id == id; });
-      life_.forget(id);
-      return;
-    }
-    if (!has_particle(id))
-      throw InputError("Simulation::remove_particle: id = " + std::to_string(id) +
-                       " is invalid; valid: the id of a particle of the simulation");
-    if (initialized_) {
-      // as a destruction time that has come: the list is renumbered, the other contacts keep
-      // their histories
-      life_.doomed.push_back({-std::numeric_limits<double>::infinity(), id});
-      Life::lifecycle(*this);
-      return;
-    }
-    life_.forget(id);
-    if (list_.rows() == 0) { // no list yet: nothing refers to the indices
-      std::vector<std::uint32_t> kept;
-      for (std::size_t i = 0; i < particles_.size(); ++i)
-        if (particles_.id[i] != id) kept.push_back(static_cast<std::uint32_t>(i));
-      Neighbours::keep_particles(*this, kept);
-      return;
-    }
-    life_.removal_requests.push_back(id); // carried out by initialize, which maps the old list
-  }
+  void remove_particle(std::int64_t id) { Life::remove_particle(*this, id); }
 
-private:
-  /// Appends a validated particle to the arrays.
-  void append_particle(const ParticleSpec<D>& s) {
-    const Material& m = table_.material(s.material);
-    const double mass = m.density * shape_.volume(s.radius);
-    const double inertia = shape_.inertia_factor() * mass * s.radius * s.radius;
-    auto& p = particles_;
-    p.id.push_back(s.id);
-    p.position.push_back(s.position);
-    p.velocity.push_back(s.velocity);
-    p.omega.push_back(s.omega);
-    p.orientation.push_back(identity_orientation<D>());
-    p.force.push_back(V::Zero());
-    p.torque.push_back(zero<A>());
-    p.radius.push_back(s.radius);
-    p.mass.push_back(mass);
-    p.inv_mass.push_back(s.fixed ? 0.0 : 1.0 / mass);
-    p.inertia.push_back(inertia);
-    p.inv_inertia.push_back(s.fixed ? 0.0 : 1.0 / inertia);
-    p.material.push_back(s.material);
-    std::apply([](auto&... f) { (f.emplace_back(), ...); }, fields_);
-    vprops_.append();
-    if constexpr (thermal) {
-      const double c = mass * m.heat_capacity;
-      p.temperature.push_back(s.temperature);
-      p.heat_rate.push_back(0.0);
-      p.heat_capacity.push_back(c);
-      p.inv_heat_capacity.push_back(c > 0 ? 1.0 / c : 0.0);
-    }
-  }
-
-public:
   /// Adds a wall; returns its index. Throws InputError on bad geometry.
   template <class G>
   std::uint32_t add_wall(const G& geometry, WallOptions<D> options = {}) {
@@ -415,188 +314,6 @@ public:
         detail::require(angular.value(time_)[d] >= 0, "Simulation::set_mass_damping",
                         "angular component", angular.value(time_)[d], "[0, inf) 1/s");
     mass_damping_ = std::make_pair(std::move(linear), std::move(angular));
-  }
-
-  // ---------------------------------------------------------------- groups and conditions
-  /// Adds a named group of particles (by id) and walls (by index); returns its index. The name
-  /// "all" is reserved for the group of every particle and wall.
-  std::size_t add_group(std::string name, std::vector<std::int64_t> particle_ids,
-                        std::vector<std::uint32_t> wall_indices = {}) {
-    const std::string obj = "Simulation::add_group '" + name + "'";
-    for (const auto w : wall_indices)
-      if (w >= walls_.size())
-        throw InputError(obj + ": wall = " + std::to_string(w) + " is invalid; valid range: [0, " +
-                         std::to_string(walls_.size()) + ") (indices returned by add_wall)");
-    std::vector<std::int64_t> known = particles_.id;
-    for (const auto& sp : life_.pending)
-      known.push_back(sp.id);
-    std::sort(known.begin(), known.end());
-    for (const auto id : particle_ids)
-      if (!std::binary_search(known.begin(), known.end(), id))
-        throw InputError(obj + ": particle id = " + std::to_string(id) +
-                         " is invalid; valid: ids of added particles");
-    const auto g =
-        cond_.add(Group{std::move(name), false, std::move(particle_ids), std::move(wall_indices)});
-    groups_dirty_ = true;
-    return g;
-  }
-  /// Adds a group of the current (active) particles for which pred(position, radius) is true,
-  /// and of the given walls.
-  template <class Pred>
-  requires std::predicate<Pred&, const V&, double> std::size_t
-  add_group_where(std::string name, Pred pred, std::vector<std::uint32_t> wall_indices = {}) {
-    std::vector<std::int64_t> ids;
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      if (pred(particles_.position[i], particles_.radius[i])) ids.push_back(particles_.id[i]);
-    return add_group(std::move(name), std::move(ids), std::move(wall_indices));
-  }
-  /// The group of this name (throws InputError naming the known groups otherwise).
-  const Group& group(const std::string& name) const { return cond_.groups[cond_.find(name)]; }
-  /// Current indices of the active particles of a group.
-  const std::vector<std::uint32_t>& group_indices(const std::string& name) const {
-    ensure_groups();
-    return cond_.members[cond_.find(name)];
-  }
-  /// True if particle i (current index) is moved by forces: not fixed and not under prescribed
-  /// motion (restrained particles are free in their other directions).
-  bool is_free(std::size_t i) const {
-    if (particles_.inv_mass[i] == 0.0) return false;
-    ensure_groups();
-    const auto& c = cond_.controls;
-    const auto it = std::lower_bound(c.begin(), c.end(), i,
-                                     [](const auto& x, std::size_t k) { return x.i < k; });
-    return it == c.end() || it->i != i || (it->linear < 0 && it->angular < 0);
-  }
-
-  /// Initial condition: sets the velocity [m/s] and angular velocity [rad/s] of the group's
-  /// particles now.
-  void set_velocity(const std::string& group, const V& v, const A& w = zero<A>()) {
-    const std::string obj = "Simulation::set_velocity (group '" + group + "')";
-    if (!all_finite(v)) detail::require(false, obj, "velocity", to_text(v), "finite components");
-    detail::require(all_finite(w), obj, "omega", "(non-finite)", "finite components");
-    for (const auto i : group_indices(group)) {
-      particles_.velocity[i] = v;
-      particles_.omega[i] = w;
-    }
-    for (auto& s : life_.pending)
-      if (in_group(group, s.id)) {
-        s.velocity = v;
-        s.omega = w;
-      }
-    cond_.restrain_velocities(particles_);
-  }
-  /// Initial condition: sets the temperature [K] of the group's particles now.
-  void set_temperature(const std::string& group, double temperature) {
-    static_assert(thermal, "grain::Simulation::set_temperature: particles have temperatures only "
-                           "when the Interaction has a conduction model");
-    detail::require(std::isfinite(temperature) && temperature >= 0,
-                    "Simulation::set_temperature (group '" + group + "')", "temperature",
-                    temperature, "[0, inf) K");
-    if constexpr (thermal) {
-      for (const auto i : group_indices(group))
-        particles_.temperature[i] = temperature;
-      for (auto& s : life_.pending)
-        if (in_group(group, s.id)) s.temperature = temperature;
-    }
-  }
-
-  /// Prescribed force [N] on each particle of the group (summed with every other load).
-  void prescribe_force(const std::string& group, VectorTimeFunction<D> f) {
-    cond_.forces.push_back({cond_.find(group), std::move(f)});
-  }
-  /// Prescribed torque [N m] on each particle of the group.
-  void prescribe_torque(const std::string& group, AngularTimeFunction<D> f) {
-    cond_.torques.push_back({cond_.find(group), std::move(f)});
-  }
-  /// Prescribed heat flux [W/m^2] into each particle of the group, times its surface.
-  void prescribe_heat_flux(const std::string& group, TimeFunction q) {
-    static_assert(thermal, "grain::Simulation::prescribe_heat_flux needs a thermal simulation: "
-                           "give the Interaction a conduction model");
-    cond_.heat_fluxes.push_back({cond_.find(group), std::move(q)});
-  }
-  /// Prescribed heat rate [W] into each particle of the group.
-  void prescribe_heat_rate(const std::string& group, TimeFunction q) {
-    static_assert(thermal, "grain::Simulation::prescribe_heat_rate needs a thermal simulation: "
-                           "give the Interaction a conduction model");
-    cond_.heat_rates.push_back({cond_.find(group), std::move(q)});
-  }
-  /// Fixed velocity [m/s] of the group's particles (while the function is active) and walls
-  /// (their translational velocity, 0 while inactive).
-  void fix_velocity(const std::string& group, VectorTimeFunction<D> v) {
-    prescribe_motion(group, std::move(v), std::nullopt, "vv");
-  }
-  /// Fixed angular velocity [rad/s] of the group's particles (while active) and walls (about
-  /// their pivot).
-  void fix_omega(const std::string& group, AngularTimeFunction<D> w) {
-    prescribe_motion(group, std::nullopt, std::move(w), "vv");
-  }
-  /// Fixed temperature [K] of the group's particles (while the function is active) and walls.
-  void fix_temperature(const std::string& group, TimeFunction T) {
-    static_assert(thermal, "grain::Simulation::fix_temperature needs a thermal simulation: give "
-                           "the Interaction a conduction model");
-    detail::require_non_negative("Simulation::fix_temperature (group '" + group + "')",
-                                 "temperature", T, time_, "[0, inf) K");
-    const auto g = cond_.find(group);
-    for (auto& w : group_walls(g)) {
-      walls_[w].options.temperature = T;
-      walls_[w].temperature = std::numeric_limits<double>::quiet_NaN();
-      walls_[w].update_temperature(time_);
-    }
-    cond_.temperatures.push_back({g, std::move(T)});
-    groups_dirty_ = true;
-    // a wall that starts to conduct changes the conductances (stored once by a thermal
-    // analysis) and the conduction time-step limit: initialise again (the time continues)
-    if (!group_walls(g).empty()) initialized_ = false;
-  }
-  /// Prescribed motion (the third seed's PRESCRIBE): a linear and an angular history, each
-  /// optional, read as velocities or accelerations by `kind` ("vv", "va", "av", "aa"; linear
-  /// first). Walls of the group take velocity histories as their velocities.
-  void prescribe_motion(const std::string& group, std::optional<VectorTimeFunction<D>> linear,
-                        std::optional<AngularTimeFunction<D>> angular,
-                        std::string_view kind = "vv") {
-    const auto [lk, ak] =
-        motion_kinds(kind, "Simulation::prescribe_motion (group '" + group + "')");
-    const auto g = cond_.find(group);
-    if (!linear && !angular)
-      throw InputError("Simulation::prescribe_motion (group '" + group +
-                       "'): linear = angular = none is invalid; valid: at least one history");
-    for (auto w : group_walls(g)) {
-      if ((linear && lk == MotionKind::acceleration) || (angular && ak == MotionKind::acceleration))
-        throw InputError("Simulation::prescribe_motion (group '" + group + "'): kind = '" +
-                         std::string(kind) + "' is invalid for wall '" + walls_[w].options.name +
-                         "'; valid for walls: velocities ('vv')");
-      if (linear) walls_[w].velocity_function = *linear;
-      if (angular) walls_[w].omega_function = *angular;
-      walls_[w].update_motion(time_);
-    }
-    if (linear) cond_.linear_motion.push_back({g, std::move(*linear), lk});
-    if (angular) cond_.angular_motion.push_back({g, std::move(*angular), ak});
-    groups_dirty_ = true;
-  }
-  /// Restrains the motion of the group's particles along up to D linear directions and the
-  /// rotation about up to 3 axes (3D; in 2D any non-zero entry restrains the rotation): the
-  /// velocity, force, angular velocity and torque components along them are removed.
-  void restrain(const std::string& group, const std::vector<V>& linear,
-                const std::vector<A>& angular = {}) {
-    const std::string obj = "Simulation::restrain (group '" + group + "')";
-    typename detail::ConditionSet<D>::RestraintOn r;
-    r.group = cond_.find(group);
-    r.linear = detail::orthonormal<D>(linear, obj, "linear");
-    if constexpr (D == 3) {
-      r.angular = detail::orthonormal<3>(angular, obj, "angular");
-    } else {
-      for (double a : angular) {
-        detail::require(std::isfinite(a) && a != 0.0, obj, "angular direction", a,
-                        "a non-zero number (the z axis)");
-        r.rotation = true;
-      }
-    }
-    cond_.restraints.push_back(std::move(r));
-    groups_dirty_ = true;
-    ensure_groups();
-    // between runs: the loads of the last evaluation, which the next first half kick uses, too
-    cond_.restrain_loads(particles_);
-    cond_.restrain_velocities(particles_);
   }
 
   // ---------------------------------------------------------------- lifecycle
@@ -694,7 +411,7 @@ public:
     time_offset_ = time_;
     step0_ = step_;
     check_materials();
-    apply_variable_properties(true);
+    VPStep::apply(*this, true);
     size_search();
     for (auto& w : walls_) {
       w.update_temperature(time_);
@@ -841,7 +558,7 @@ private:
       if (heats() && !cond_.temperatures.empty()) cond_.fix_temperatures(particles_, time_);
     }
     if (lifecycle_due()) Life::lifecycle(*this);
-    if (!vprops_.empty()) apply_variable_properties(false);
+    if (!vprops_.empty()) VPStep::apply(*this, false);
     call_stages<Hook::end_of_step>();
     counters_.steps += 1;
     counters_.particle_steps += static_cast<double>(particles_.size());
@@ -911,7 +628,7 @@ public:
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
-      find_fixed();
+      Pass::find_fixed(*this);
       interrupted_ = false; // a checkpoint holds whole steps
       wall_loads_.clear(list_.walls.size());
       origin_.clear();
@@ -1000,7 +717,6 @@ public:
   }
   std::size_t size() const { return particles_.size(); }
 
-  /// Current index of the particle with this id (particles are re-sorted by the cell list).
   /// True if a prescribed motion (fix_velocity, fix_omega, prescribe_motion) or a restraint
   /// covers the particle with this id.
   bool motion_controlled(std::int64_t id) const {
@@ -1009,6 +725,7 @@ public:
       if (c.id == id) return true;
     return false;
   }
+  /// Current index of the particle with this id (particles are re-sorted by the cell list).
   std::size_t index_of(std::int64_t id) const {
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (particles_.id[i] == id) return i;
@@ -1191,32 +908,6 @@ private:
       return h[e];
   }
 
-  bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g) const {
-    return touching_pair(i, j, g, particles_.velocity, particles_.omega);
-  }
-  bool touching_wall(std::size_t i, std::size_t w, ContactGeometry<D>& g) const {
-    return touching_wall(i, w, g, particles_.velocity, particles_.omega);
-  }
-  /// Geometry of pair (i, j) if it touches, with the velocities `v`, `w`.
-  GRAIN_INLINE bool touching_pair(std::size_t i, std::size_t j, ContactGeometry<D>& g,
-                                  const std::vector<V>& v, const std::vector<A>& w) const {
-    const auto& p = particles_;
-    const double rs = p.radius[i] + p.radius[j];
-    if ((p.position[j] - p.position[i]).squaredNorm() >= rs * rs) return false;
-    pair_geometry_of(i, j, g, v, w);
-    return true;
-  }
-  /// Geometry of pair (i, j), which touches, with the velocities `v`, `w`.
-  GRAIN_INLINE void pair_geometry_of(std::size_t i, std::size_t j, ContactGeometry<D>& g,
-                                     const std::vector<V>& v, const std::vector<A>& w) const {
-    const auto& p = particles_;
-    const V d = p.position[j] - p.position[i];
-    const double dist = std::sqrt(d.squaredNorm());
-    pair_geometry<D>(g, p.position[i], V(d * (1.0 / dist)), dist, p.radius[i], p.radius[j],
-                     p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
-    if (has_fixed_) [[unlikely]] // out of line: the contact pass stays as without the check
-      g.m_eff = effective_mass(i, j, g.m_eff);
-  }
   /// True if particle i is fixed (ParticleSpec::fixed): it moves with its velocities whatever the
   /// forces, like a wall. Not a particle that a field marks as driven (field_traits: a clump
   /// member, a particle moved by a rigid-body system), whose inverse mass is 0 too, but which
@@ -1225,28 +916,6 @@ private:
     if (particles_.inv_mass[i] != 0.0) return false;
     return !std::apply(
         [i](const auto&... f) { return (detail::field_driven(f[i]) || ... || false); }, fields_);
-  }
-  /// Effective mass of the contact of particles i and j [kg]: m_i m_j / (m_i + m_j) (m_eff), or
-  /// the free partner's mass if the other is fixed (an infinite mass, as against a wall; the
-  /// restitution-based damping of the contact laws then gives the restitution asked for).
-  [[gnu::noinline]] double effective_mass(std::size_t i, std::size_t j, double m_eff) const {
-    const bool fi = fixed_particle(i), fj = fixed_particle(j);
-    if (fi == fj) return m_eff;
-    return fi ? particles_.mass[j] : particles_.mass[i];
-  }
-  /// Sets has_fixed_ from the particles.
-  void find_fixed() {
-    has_fixed_ = false;
-    for (std::size_t i = 0; i < particles_.size() && !has_fixed_; ++i)
-      has_fixed_ = fixed_particle(i);
-  }
-  GRAIN_INLINE bool touching_wall(std::size_t i, std::size_t k, ContactGeometry<D>& g,
-                                  const std::vector<V>& v, const std::vector<A>& w) const {
-    const auto& p = particles_;
-    const auto prox = walls_[k].proximity(p.position[i]);
-    if (prox.distance >= p.radius[i]) return false;
-    wall_geometry<D>(g, walls_[k], prox, p.position[i], p.radius[i], p.mass[i], v[i], w[i]);
-    return true;
   }
 
   // ---------------------------------------------------------------- neighbours
@@ -1293,44 +962,7 @@ private:
     detail::permute_in_place(v, perm);
   }
 
-  /// Applies the variable properties that are due (all active ones if `all`) at the current time;
-  /// returns true if something changed.
-  bool apply_variable_properties(bool all, const std::vector<char>* only = nullptr) {
-    if (vprops_.empty()) return false;
-    ensure_groups();
-    auto& p = particles_;
-    const auto changes = vprops_.apply(p, shape_, cond_.members, time_, step_, all, only);
-    const bool radius = changes.radius, contact = changes.contact, any = changes.any;
-    const bool thermal_change = changes.thermal;
-    if (radius) {
-      // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
-      for (double r : p.radius)
-        r_max_ = std::max(r_max_, r);
-      skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
-      if (heats()) cutoff_ = largest_cutoff();
-      if (initialized_) Neighbours::rebuild(*this);
-    } else if (contact && initialized_) {
-      Neighbours::refresh_pair_cache(*this);
-    }
-    if constexpr (thermal) {
-      if (any && initialized_ && analysis() == Analysis::thermal) Heat::store_conductances(*this);
-      if (thermal_change && initialized_ && heats()) {
-        // the conduction limit moves with the conductivities and heat capacities
-        const double limit = conduction_time_step();
-        if (dt_ > limit)
-          throw InputError(
-              "Simulation: time_step = " + detail::to_text(dt_) +
-              " s is above the conduction limit " + detail::to_text(limit) +
-              " s reached at t = " + detail::to_text(time_) +
-              " s by a variable property (conductivity, heat capacity, density or radius); valid "
-              "range: (0, " +
-              detail::to_text(limit) + "] s (give a smaller time_step or auto_time_step_factor)");
-      }
-    }
-    return any;
-  }
-
-  // ---------------------------------------------------------------- forces
+  // ---------------------------------------------------------------- loads, shared by the components
   /// Velocities the forces see. With velocity Verlet the state holds v(n+1/2) while forces are
   /// computed; forces use the prediction v(n+1/2) + a(n) dt/2, so that velocity-dependent forces
   /// (dashpots, global damping) are second-order accurate, and tangential springs still
@@ -1369,8 +1001,6 @@ private:
     else
       return particles_.omega;
   }
-
-  // ---------------------------------------------------------------- heat
 
   History& hist(std::vector<History>& h, std::size_t e) {
     if constexpr (Contact::template stateless<D>) {
@@ -1430,6 +1060,7 @@ private:
   using Life = detail::LifecycleStep<Simulation>;
   using Diag = detail::Diagnostics<Simulation>;
   using Limits = detail::TimeStepLimits<Simulation>;
+  using VPStep = detail::VariablePropertyStep<Simulation>;
   friend Pass;
   friend Heat;
   friend Motion;
@@ -1437,6 +1068,8 @@ private:
   friend Life;
   friend Diag;
   friend Limits;
+  friend VPStep;
+  friend detail::GroupsAndConditions<Simulation, D>;
 
   StageTuple stages_{};
   typename FieldStore::type fields_{};
@@ -1486,7 +1119,6 @@ private:
   long step0_ = 0; ///< step count at the last initialisation (time is counted from there)
   std::int64_t next_id_ = 0;
   bool initialized_ = false;
-  // groups and conditions
   // variable properties
   VariableProperties<D> vprops_; ///< properties that follow tables, per-particle values
   std::vector<PairProperties> pair_cache_,

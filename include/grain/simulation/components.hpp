@@ -13,6 +13,10 @@
 /// | `LifecycleStep<Sim>`  | lifecycle.hpp      | removal and activation of particles             |
 /// | `Diagnostics<Sim>`    | diagnostics.hpp    | read-only visits of contacts and conductances   |
 /// | `TimeStepLimits<Sim>` | time_step.hpp      | the stable limits and the step of a run         |
+/// | `VariablePropertyStep<Sim>` | variable_properties.hpp | properties that follow tables, applied |
+///
+/// The public API of groups and conditions is a base of `Simulation`,
+/// `GroupsAndConditions<Sim, D>` (conditions_api.hpp), which knows its derived class.
 ///
 /// The components that own data and need no simulation (tested on their own) are the contact
 /// history store (contact/history.hpp), the pair table (pair_table.hpp), the lifecycle decision
@@ -35,5 +39,9 @@ template <class Sim>
 struct Diagnostics;
 template <class Sim>
 struct TimeStepLimits;
+template <class Sim>
+struct VariablePropertyStep;
+template <class Sim, int D>
+class GroupsAndConditions;
 
 } // namespace grain::detail

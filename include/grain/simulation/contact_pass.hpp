@@ -19,6 +19,7 @@
 #include <grain/simulation/parallel.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <tuple>
@@ -210,6 +211,62 @@ struct ContactPass {
                                 cell_radius);
   }
 
+  /// Geometry of pair (i, j) if it touches, with the velocities `v`, `w` (by default the
+  /// particles' own).
+  GRAIN_INLINE static bool touching_pair(const Sim& s, std::size_t i, std::size_t j,
+                                         ContactGeometry<D>& g, const std::vector<V>& v,
+                                         const std::vector<A>& w) {
+    const auto& p = s.particles_;
+    const double rs = p.radius[i] + p.radius[j];
+    if ((p.position[j] - p.position[i]).squaredNorm() >= rs * rs) return false;
+    pair_geometry_of(s, i, j, g, v, w);
+    return true;
+  }
+  static bool touching_pair(const Sim& s, std::size_t i, std::size_t j, ContactGeometry<D>& g) {
+    return touching_pair(s, i, j, g, s.particles_.velocity, s.particles_.omega);
+  }
+  /// Geometry of pair (i, j), which touches, with the velocities `v`, `w`.
+  GRAIN_INLINE static void pair_geometry_of(const Sim& s, std::size_t i, std::size_t j,
+                                            ContactGeometry<D>& g, const std::vector<V>& v,
+                                            const std::vector<A>& w) {
+    const auto& p = s.particles_;
+    const V d = p.position[j] - p.position[i];
+    const double dist = std::sqrt(d.squaredNorm());
+    pair_geometry<D>(g, p.position[i], V(d * (1.0 / dist)), dist, p.radius[i], p.radius[j],
+                     p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
+    if (s.has_fixed_) [[unlikely]] // out of line: the contact pass stays as without the check
+      g.m_eff = effective_mass(s, i, j, g.m_eff);
+  }
+  /// Geometry of the contact of particle i with wall k if they touch, with the velocities `v`,
+  /// `w` (by default the particles' own).
+  GRAIN_INLINE static bool touching_wall(const Sim& s, std::size_t i, std::size_t k,
+                                         ContactGeometry<D>& g, const std::vector<V>& v,
+                                         const std::vector<A>& w) {
+    const auto& p = s.particles_;
+    const auto prox = s.walls_[k].proximity(p.position[i]);
+    if (prox.distance >= p.radius[i]) return false;
+    wall_geometry<D>(g, s.walls_[k], prox, p.position[i], p.radius[i], p.mass[i], v[i], w[i]);
+    return true;
+  }
+  static bool touching_wall(const Sim& s, std::size_t i, std::size_t k, ContactGeometry<D>& g) {
+    return touching_wall(s, i, k, g, s.particles_.velocity, s.particles_.omega);
+  }
+  /// Effective mass of the contact of particles i and j [kg]: m_i m_j / (m_i + m_j) (m_eff), or
+  /// the free partner's mass if the other is fixed (an infinite mass, as against a wall; the
+  /// restitution-based damping of the contact laws then gives the restitution asked for).
+  [[gnu::noinline]] static double effective_mass(const Sim& s, std::size_t i, std::size_t j,
+                                                 double m_eff) {
+    const bool fi = s.fixed_particle(i), fj = s.fixed_particle(j);
+    if (fi == fj) return m_eff;
+    return fi ? s.particles_.mass[j] : s.particles_.mass[i];
+  }
+  /// Notes whether some particle is fixed (the geometry then checks each touching pair).
+  static void find_fixed(Sim& s) {
+    s.has_fixed_ = false;
+    for (std::size_t i = 0; i < s.particles_.size() && !s.has_fixed_; ++i)
+      s.has_fixed_ = s.fixed_particle(i);
+  }
+
   /// Requests the data that row i reads of its partners at or beyond `end` (the next chunk's
   /// particles, not yet rows in this sweep), so that their cache misses overlap with the work of
   /// the rows before it. Read intent only: a partner may belong to another thread's chunk.
@@ -281,7 +338,7 @@ struct ContactPass {
     const auto& vf = s.force_velocity();
     const auto& wf = s.force_omega();
     ContactGeometry<D> gc; // local to the contact: kept in registers
-    s.pair_geometry_of(i, j, gc, vf, wf);
+    pair_geometry_of(s, i, j, gc, vf, wf);
     if constexpr (predicts_velocity && Contact::has_torque)
       set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
     const Law law = pair_law(s, e, i, j);
@@ -318,7 +375,7 @@ struct ContactPass {
     ContactGeometry<D> g;
     for (const auto e : s.list_.wall_entries(i)) {
       const auto w = s.list_.walls[e];
-      if (!s.touching_wall(i, w, g, vf, wf)) {
+      if (!touching_wall(s, i, w, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) s.hist_.wall[e] = History{};
         s.wall_loads_.entries[e] = {};
         if constexpr (Contact::indirect) {
@@ -365,89 +422,99 @@ struct ContactPass {
   /// up instead, every row met a partner a layer of cells ahead for the first time in the step,
   /// through the list (measured 1 to 5 % slower at N = 1e5 and 1e6, docs/performance.md).
   static void contact_rows(Sim& s, long begin, long end, long ahead, long span) {
-    auto& p = s.particles_;
     const long cold = std::max(begin, end - span); // rows with partners beyond the chunk
-    if constexpr (Contact::indirect) {
-      ContactGeometry<D> g;
-      [[maybe_unused]] const bool heat = s.heat_on_;
-      for (long ii = end - 1; ii >= begin; --ii) {
-        request_ahead(s, ii, ahead, begin, cold, end);
-        const auto i = static_cast<std::size_t>(ii);
-        for (const auto e : s.list_.pair_entries(i)) {
-          const auto j = s.list_.partners[e];
-          const double rs = p.radius[i] + p.radius[j];
-          if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
-            pair_contact(s, e, i, j); // the geometry is made there, once
-            continue;
-          }
-          if constexpr (!Contact::template stateless<D>) s.hist_.pair[e] = History{};
-          if (heat) {
-            const double H = Heat::gap_pair_conductance(s, i, j, e, g);
-            const double q = H * (p.temperature[j] - p.temperature[i]);
-            p.heat_rate[i] += q;
-            p.heat_rate[j] -= q;
-          }
+    if constexpr (Contact::indirect)
+      rows_with_gaps(s, begin, end, ahead, cold);
+    else
+      rows_collected(s, begin, end, ahead, cold);
+  }
+
+  /// contact_rows with a conduction model that conducts across gaps: row by row, each listed
+  /// pair either touches (the contact law) or conducts across its gap.
+  GRAIN_INLINE static void rows_with_gaps(Sim& s, long begin, long end, long ahead, long cold) {
+    auto& p = s.particles_;
+    ContactGeometry<D> g;
+    [[maybe_unused]] const bool heat = s.heat_on_;
+    for (long ii = end - 1; ii >= begin; --ii) {
+      request_ahead(s, ii, ahead, begin, cold, end);
+      const auto i = static_cast<std::size_t>(ii);
+      for (const auto e : s.list_.pair_entries(i)) {
+        const auto j = s.list_.partners[e];
+        const double rs = p.radius[i] + p.radius[j];
+        if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+          pair_contact(s, e, i, j); // the geometry is made there, once
+          continue;
         }
-        wall_contacts(s, i);
+        if constexpr (!Contact::template stateless<D>) s.hist_.pair[e] = History{};
+        if (heat) {
+          const double H = Heat::gap_pair_conductance(s, i, j, e, g);
+          const double q = H * (p.temperature[j] - p.temperature[i]);
+          p.heat_rate[i] += q;
+          p.heat_rate[j] -= q;
+        }
       }
-    } else {
-      // a branch-free distance test over the entries of several rows, collecting the touching
-      // pairs; then the contact law for all of them in one loop (its length varies less than that
-      // of a row), then the walls of those rows. The history of a pair that no longer touches is
-      // cleared (written only if it is not blank already).
-      constexpr std::uint32_t capacity = 64;
-      std::uint32_t hit_entry[capacity], hit_row[capacity];
-      std::uint32_t nhit = 0;
-      long last = end; // rows [i, last) have their pairs collected, their walls pending
-      auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
-        for (std::uint32_t k = 0; k < nhit; ++k)
-          pair_contact(s, hit_entry[k], hit_row[k], s.list_.partners[hit_entry[k]]);
-        nhit = 0;
-      };
-      auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
-        laws();
-        for (long r = last - 1; r >= first; --r)
-          wall_contacts(s, static_cast<std::size_t>(r));
-        last = first;
-      };
-      auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
-                      double ri) GRAIN_INLINE_LAMBDA {
-        for (auto e = b; e < b_end; ++e) {
-          const auto j = s.list_.partners[e];
-          const double rs = ri + p.radius[j];
-          const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
-          hit_entry[nhit] = e;
-          hit_row[nhit] = i;
-          nhit += t;
-          if constexpr (!Contact::template stateless<D>) {
-            // no branch on the distance test: clearing a stale history is rare
-            const std::uint64_t stale = detail::byte_difference(s.hist_.pair[e], s.blank_history_) &
-                                        (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
-            if (stale != 0) [[unlikely]]
-              s.hist_.pair[e] = s.blank_history_;
-          }
-        }
-      };
-      for (long ii = end - 1; ii >= begin; --ii) {
-        request_ahead(s, ii, ahead, begin, cold, end);
-        const auto i = static_cast<std::uint32_t>(ii);
-        const auto r0 = s.list_.offsets[i], r1 = s.list_.offsets[i + 1];
-        const V xi = p.position[i];
-        const double ri = p.radius[i];
-        if (nhit + (r1 - r0) > capacity) {
-          flush(ii + 1);
-          if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
-            for (auto b = r0; b < r1; b += capacity) {
-              test(b, std::min(r1, b + capacity), i, xi, ri);
-              laws();
-            }
-            continue;
-          }
-        }
-        test(r0, r1, i, xi, ri);
-      }
-      flush(begin);
+      wall_contacts(s, i);
     }
+  }
+
+  /// contact_rows without conduction across gaps: a branch-free distance test over the entries
+  /// of several rows, collecting the touching pairs; then the contact law for all of them in one
+  /// loop (its length varies less than that of a row), then the walls of those rows. The history
+  /// of a pair that no longer touches is cleared (written only if it is not blank already).
+  GRAIN_INLINE static void rows_collected(Sim& s, long begin, long end, long ahead, long cold) {
+    auto& p = s.particles_;
+    constexpr std::uint32_t capacity = 64;
+    std::uint32_t hit_entry[capacity], hit_row[capacity];
+    std::uint32_t nhit = 0;
+    long last = end; // rows [i, last) have their pairs collected, their walls pending
+    auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
+      for (std::uint32_t k = 0; k < nhit; ++k)
+        pair_contact(s, hit_entry[k], hit_row[k], s.list_.partners[hit_entry[k]]);
+      nhit = 0;
+    };
+    auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
+      laws();
+      for (long r = last - 1; r >= first; --r)
+        wall_contacts(s, static_cast<std::size_t>(r));
+      last = first;
+    };
+    auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
+                    double ri) GRAIN_INLINE_LAMBDA {
+      for (auto e = b; e < b_end; ++e) {
+        const auto j = s.list_.partners[e];
+        const double rs = ri + p.radius[j];
+        const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
+        hit_entry[nhit] = e;
+        hit_row[nhit] = i;
+        nhit += t;
+        if constexpr (!Contact::template stateless<D>) {
+          // no branch on the distance test: clearing a stale history is rare
+          const std::uint64_t stale = detail::byte_difference(s.hist_.pair[e], s.blank_history_) &
+                                      (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
+          if (stale != 0) [[unlikely]]
+            s.hist_.pair[e] = s.blank_history_;
+        }
+      }
+    };
+    for (long ii = end - 1; ii >= begin; --ii) {
+      request_ahead(s, ii, ahead, begin, cold, end);
+      const auto i = static_cast<std::uint32_t>(ii);
+      const auto r0 = s.list_.offsets[i], r1 = s.list_.offsets[i + 1];
+      const V xi = p.position[i];
+      const double ri = p.radius[i];
+      if (nhit + (r1 - r0) > capacity) {
+        flush(ii + 1);
+        if (r1 - r0 > capacity) { // a long row (a large particle among small ones): in blocks
+          for (auto b = r0; b < r1; b += capacity) {
+            test(b, std::min(r1, b + capacity), i, xi, ri);
+            laws();
+          }
+          continue;
+        }
+      }
+      test(r0, r1, i, xi, ri);
+    }
+    flush(begin);
   }
 };
 

@@ -68,13 +68,13 @@ struct Diagnostics {
     for (std::size_t i = 0; i < listed_rows(s); ++i) {
       for (const auto e : s.list_.pair_entries(i)) {
         const auto j = s.list_.partners[e];
-        if (!s.touching_pair(i, j, g)) continue;
+        if (!Pass::touching_pair(s, i, j, g)) continue;
         visit(i, j, false, Pass::pair_law(s, e, i, j), Sim::history_at(s.hist_.pair, e),
               Heat::cell_radius_pair(s, e));
       }
       for (const auto e : s.list_.wall_entries(i)) {
         const auto w = s.list_.walls[e];
-        if (!s.touching_wall(i, w, g)) continue;
+        if (!Pass::touching_wall(s, i, w, g)) continue;
         visit(i, w, true, Pass::wall_law(s, e, i, w), Sim::history_at(s.hist_.wall, e),
               Heat::cell_radius_wall(s, e));
       }
@@ -103,7 +103,7 @@ struct Diagnostics {
         for (const auto e : s.list_.pair_entries(i)) {
           const auto j = s.list_.partners[e];
           double H = 0.0;
-          if (s.touching_pair(i, j, g))
+          if (Pass::touching_pair(s, i, j, g))
             H = touching(Pass::pair_law(s, e, i, j), Sim::history_at(s.hist_.pair, e),
                          Heat::cell_radius_pair(s, e));
           else if constexpr (Contact::indirect)
@@ -114,7 +114,7 @@ struct Diagnostics {
           const auto w = s.list_.walls[e];
           if (!s.wall_conducts(w)) continue;
           double H = 0.0;
-          if (s.touching_wall(i, w, g))
+          if (Pass::touching_wall(s, i, w, g))
             H = touching(Pass::wall_law(s, e, i, w), Sim::history_at(s.hist_.wall, e),
                          Heat::cell_radius_wall(s, e));
           else if constexpr (Contact::indirect)
@@ -134,9 +134,9 @@ struct Diagnostics {
     ContactGeometry<D> g;
     for (std::size_t i = 0; i < listed_rows(s); ++i) {
       for (const auto e : s.list_.pair_entries(i))
-        pp += s.touching_pair(i, s.list_.partners[e], g);
+        pp += Pass::touching_pair(s, i, s.list_.partners[e], g);
       for (const auto e : s.list_.wall_entries(i))
-        pw += s.touching_wall(i, s.list_.walls[e], g);
+        pw += Pass::touching_wall(s, i, s.list_.walls[e], g);
     }
     return {pp, pw};
   }

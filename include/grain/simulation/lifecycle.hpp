@@ -170,6 +170,117 @@ struct LifecycleStep {
   static constexpr long parallel_threshold = Sim::parallel_threshold;
   using Heat = HeatStep<Sim>;
   using Neighbours = NeighbourRebuild<Sim>;
+  using Shape = typename Sim::shape_type;
+
+  /// Sim::add_particle: validates the particle, then activates it or keeps it for its
+  /// creation time.
+  static std::int64_t add_particle(Sim& s, const ParticleSpec<D>& spec) {
+    ParticleSpec<D> ps = spec;
+    ps.id = ps.id >= 0 ? ps.id : s.next_id_;
+    const std::int64_t id = ps.id;
+    const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
+    // ids below next_id_ may be taken (an id at or above it is new)
+    if (id < s.next_id_ && (s.has_particle(id) || s.life_.was_removed(id)))
+      throw InputError(obj + ": id = " + std::to_string(id) +
+                       " is invalid; valid: an id no other particle has or had (or -1 = next "
+                       "free id)");
+    // messages are formatted only for bad input (adding a particle must stay cheap)
+    if (!all_finite(ps.position))
+      detail::require(false, obj, "position", s.to_text(ps.position), "finite coordinates");
+    detail::require_positive(obj, "radius", ps.radius);
+    if (!all_finite(ps.velocity))
+      detail::require(false, obj, "velocity", s.to_text(ps.velocity), "finite components");
+    detail::require(all_finite(ps.omega), obj, "omega", "(non-finite)", "finite components");
+    s.table_.check_material(ps.material, obj);
+    detail::require(!std::isnan(ps.creation_time) &&
+                        ps.creation_time < std::numeric_limits<double>::infinity(),
+                    obj, "creation_time", ps.creation_time, "[-inf, inf) s");
+    if (!(ps.destruction_time > ps.creation_time))
+      detail::require(false, obj, "destruction_time", ps.destruction_time,
+                      "(creation_time, inf] = (" + detail::to_text(ps.creation_time) + ", inf] s");
+    if (!(ps.destruction_time > s.time_))
+      detail::require(false, obj, "destruction_time", ps.destruction_time,
+                      "(current time, inf] = (" + detail::to_text(s.time_) + ", inf] s");
+    if constexpr (thermal) {
+      const double t = std::isnan(ps.temperature) ? s.params_.initial_temperature : ps.temperature;
+      detail::require(std::isfinite(t) && t >= 0.0, obj, "temperature", t, "[0, inf) K");
+      ps.temperature = t;
+    } else {
+      if (!std::isnan(ps.temperature))
+        throw InputError(obj + ": temperature = " + detail::to_text(ps.temperature) +
+                         " K is given but the contact has no conduction model; valid: leave it "
+                         "unset, or give the Interaction a conduction model");
+    }
+    s.next_id_ = std::max(s.next_id_, id + 1);
+    if (std::isfinite(ps.destruction_time)) s.life_.doomed.push_back({ps.destruction_time, id});
+    if (ps.creation_time > s.time_) {
+      s.life_.pending.push_back(ps);
+    } else {
+      append_particle(s, ps);
+      s.groups_dirty_ = true;
+    }
+    s.initialized_ = false;
+    return id;
+  }
+
+  /// Sim::remove_particle.
+  static void remove_particle(Sim& s, std::int64_t id) {
+    if (s.life_.is_pending(id)) {
+      std::erase_if(s.life_.pending, [&](const ParticleSpec<D>& ps) { return ps.id == id; });
+      s.life_.forget(id);
+      return;
+    }
+    if (!s.has_particle(id))
+      throw InputError("Simulation::remove_particle: id = " + std::to_string(id) +
+                       " is invalid; valid: the id of a particle of the simulation");
+    if (s.initialized_) {
+      // as a destruction time that has come: the list is renumbered, the other contacts keep
+      // their histories
+      s.life_.doomed.push_back({-std::numeric_limits<double>::infinity(), id});
+      lifecycle(s);
+      return;
+    }
+    s.life_.forget(id);
+    if (s.list_.rows() == 0) { // no list yet: nothing refers to the indices
+      std::vector<std::uint32_t> kept;
+      for (std::size_t i = 0; i < s.particles_.size(); ++i)
+        if (s.particles_.id[i] != id) kept.push_back(static_cast<std::uint32_t>(i));
+      Neighbours::keep_particles(s, kept);
+      return;
+    }
+    s.life_.removal_requests.push_back(id); // carried out by initialize, which maps the old list
+  }
+
+  /// Appends a validated particle to the arrays (its mass, inertia and heat capacity from its
+  /// material), with its fields and variable-property slots.
+  static void append_particle(Sim& s, const ParticleSpec<D>& ps) {
+    const Material& m = s.table_.material(ps.material);
+    const double mass = m.density * s.shape_.volume(ps.radius);
+    const double inertia = s.shape_.inertia_factor() * mass * ps.radius * ps.radius;
+    auto& p = s.particles_;
+    p.id.push_back(ps.id);
+    p.position.push_back(ps.position);
+    p.velocity.push_back(ps.velocity);
+    p.omega.push_back(ps.omega);
+    p.orientation.push_back(identity_orientation<D>());
+    p.force.push_back(V::Zero());
+    p.torque.push_back(zero<A>());
+    p.radius.push_back(ps.radius);
+    p.mass.push_back(mass);
+    p.inv_mass.push_back(ps.fixed ? 0.0 : 1.0 / mass);
+    p.inertia.push_back(inertia);
+    p.inv_inertia.push_back(ps.fixed ? 0.0 : 1.0 / inertia);
+    p.material.push_back(ps.material);
+    std::apply([](auto&... f) { (f.emplace_back(), ...); }, s.fields_);
+    s.vprops_.append();
+    if constexpr (thermal) {
+      const double c = mass * m.heat_capacity;
+      p.temperature.push_back(ps.temperature);
+      p.heat_rate.push_back(0.0);
+      p.heat_capacity.push_back(c);
+      p.inv_heat_capacity.push_back(c > 0 ? 1.0 / c : 0.0);
+    }
+  }
 
   /// Removes the particles that left the bounding box, entered a sink or reached their
   /// destruction time, and activates those whose creation time has come (Lifecycle::decide).
@@ -182,7 +293,7 @@ struct LifecycleStep {
     if (d.removed) Neighbours::keep_particles(s, d.kept);
     std::vector<std::int64_t> born_ids;
     for (const auto& spec : d.born) {
-      s.append_particle(spec);
+      append_particle(s, spec);
       p.force.back() = p.mass.back() * s.gravity(); // its first half kick feels its weight
       d.kept.push_back(Sim::none);
       born_ids.push_back(p.id.back());
@@ -203,7 +314,7 @@ struct LifecycleStep {
         std::vector<char> newborn(p.size(), 0);
         for (std::size_t i = 0; i < p.size(); ++i)
           newborn[i] = std::binary_search(born_ids.begin(), born_ids.end(), p.id[i]) ? 1 : 0;
-        s.apply_variable_properties(true, &newborn);
+        VariablePropertyStep<Sim>::apply(s, true, &newborn);
       }
     }
     if constexpr (thermal)

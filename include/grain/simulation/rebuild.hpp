@@ -41,6 +41,7 @@ struct NeighbourRebuild {
   using SearchT = typename Sim::search_type;
   using Histories = typename Sim::Histories;
   static constexpr bool excluding_fields = Sim::excluding_fields;
+  using Pass = ContactPass<Sim>;
   using Heat = HeatStep<Sim>;
 
   static void update_neighbors(Sim& s) {
@@ -87,7 +88,7 @@ struct NeighbourRebuild {
   static void rebuild(Sim& s) {
     auto& p = s.particles_;
     const std::size_t n = p.size();
-    s.find_fixed();
+    Pass::find_fixed(s);
     s.require_finite_state(); // a non-finite position has no cell
     s.collect_wall_loads();   // the loads of the last evaluation outlive the list entries
     NeighborList old = std::move(s.list_);

@@ -13,6 +13,8 @@
 #include <grain/core/table.hpp>
 #include <grain/particles/material.hpp>
 #include <grain/particles/storage.hpp>
+#include <grain/simulation/components.hpp>
+#include <grain/simulation/params.hpp>
 
 #include <algorithm>
 #include <array>
@@ -20,6 +22,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -146,7 +149,6 @@ struct VariableProperties {
   Changes apply(Particles& p, const Shape& shape,
                 const std::vector<std::vector<std::uint32_t>>& members, double t, long step,
                 bool all, const std::vector<char>* only = nullptr) {
-    constexpr bool thermal = requires { p.temperature; };
     Changes c;
     for (const auto& [vp, g] : list) {
       if (!vp.active(t) || (!all && step % vp.every != 0)) continue;
@@ -155,81 +157,151 @@ struct VariableProperties {
       std::size_t hint = 0;
       for (const auto i : members[g]) {
         if (only && !(*only)[i]) continue;
-        double x = 0.0;
-        switch (vp.variable) {
-        case Variable::temperature:
-          if constexpr (thermal) x = p.temperature[i];
-          break;
-        case Variable::time:
-          x = t;
-          break;
-        case Variable::speed:
-          x = p.velocity[i].norm();
-          break;
-        }
-        const double y = tab(x, hint);
-        const double vol = shape.volume(p.radius[i]);
-        const double density = p.mass[i] / vol;
-        [[maybe_unused]] double cs = 0.0; // specific heat capacity, kept
-        if constexpr (thermal) cs = p.heat_capacity[i] / p.mass[i];
-        auto set_mass = [&](double mass) {
-          p.mass[i] = mass;
-          if (p.inv_mass[i] != 0.0) p.inv_mass[i] = 1.0 / mass;
-          p.inertia[i] = shape.inertia_factor() * mass * p.radius[i] * p.radius[i];
-          if (p.inv_inertia[i] != 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
-          if constexpr (thermal) {
-            p.heat_capacity[i] = mass * cs;
-            if (p.inv_heat_capacity[i] != 0.0) p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
-          }
-        };
-        auto set_value = [&](std::size_t k) {
-          values[k][i] = y;
-          c.contact = true;
-        };
-        switch (vp.property) {
-        case Property::radius:
-          if (y != p.radius[i]) {
-            p.radius[i] = y;
-            set_mass(density * shape.volume(y));
-            c.radius = true;
-            c.thermal = true; // heat capacity and conductances change
-          }
-          break;
-        case Property::density:
-          set_mass(y * vol);
-          c.thermal = true; // the heat capacity m c changes
-          break;
-        case Property::heat_capacity:
-          c.thermal = true;
-          if constexpr (thermal) {
-            p.heat_capacity[i] = p.mass[i] * y;
-            p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
-          }
-          break;
-        case Property::young:
-          set_value(0);
-          break;
-        case Property::poisson:
-          set_value(1);
-          break;
-        case Property::restitution:
-          set_value(2);
-          break;
-        case Property::friction:
-          set_value(3);
-          break;
-        case Property::rolling_friction:
-          set_value(4);
-          break;
-        case Property::conductivity:
-          set_value(5);
-          c.thermal = true;
-          break;
-        }
+        set_property(vp.property, tab(variable_of(vp.variable, p, i, t), hint), p, shape, i, c);
       }
     }
     return c;
   }
+
+private:
+  /// The value of a table's variable for particle i at time t.
+  template <class Particles>
+  static double variable_of(Variable v, const Particles& p, std::size_t i, double t) {
+    constexpr bool thermal = requires { p.temperature; };
+    double x = 0.0;
+    switch (v) {
+    case Variable::temperature:
+      if constexpr (thermal) x = p.temperature[i];
+      break;
+    case Variable::time:
+      x = t;
+      break;
+    case Variable::speed:
+      x = p.velocity[i].norm();
+      break;
+    }
+    return x;
+  }
+
+  /// Sets property `prop` of particle i to y, with what follows from it (mass, inertia, heat
+  /// capacity), and notes in c what changed.
+  template <class Particles, class Shape>
+  void set_property(Property prop, double y, Particles& p, const Shape& shape, std::size_t i,
+                    Changes& c) {
+    constexpr bool thermal = requires { p.temperature; };
+    const double vol = shape.volume(p.radius[i]);
+    const double density = p.mass[i] / vol;
+    [[maybe_unused]] double cs = 0.0; // specific heat capacity, kept
+    if constexpr (thermal) cs = p.heat_capacity[i] / p.mass[i];
+    auto set_mass = [&](double mass) {
+      p.mass[i] = mass;
+      if (p.inv_mass[i] != 0.0) p.inv_mass[i] = 1.0 / mass;
+      p.inertia[i] = shape.inertia_factor() * mass * p.radius[i] * p.radius[i];
+      if (p.inv_inertia[i] != 0.0) p.inv_inertia[i] = 1.0 / p.inertia[i];
+      if constexpr (thermal) {
+        p.heat_capacity[i] = mass * cs;
+        if (p.inv_heat_capacity[i] != 0.0) p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
+      }
+    };
+    auto set_value = [&](std::size_t k) {
+      values[k][i] = y;
+      c.contact = true;
+    };
+    switch (prop) {
+    case Property::radius:
+      if (y != p.radius[i]) {
+        p.radius[i] = y;
+        set_mass(density * shape.volume(y));
+        c.radius = true;
+        c.thermal = true; // heat capacity and conductances change
+      }
+      break;
+    case Property::density:
+      set_mass(y * vol);
+      c.thermal = true; // the heat capacity m c changes
+      break;
+    case Property::heat_capacity:
+      c.thermal = true;
+      if constexpr (thermal) {
+        p.heat_capacity[i] = p.mass[i] * y;
+        p.inv_heat_capacity[i] = 1.0 / p.heat_capacity[i];
+      }
+      break;
+    case Property::young:
+      set_value(0);
+      break;
+    case Property::poisson:
+      set_value(1);
+      break;
+    case Property::restitution:
+      set_value(2);
+      break;
+    case Property::friction:
+      set_value(3);
+      break;
+    case Property::rolling_friction:
+      set_value(4);
+      break;
+    case Property::conductivity:
+      set_value(5);
+      c.thermal = true;
+      break;
+    }
+  }
 };
 
 } // namespace grain
+
+namespace grain::detail {
+
+/// The variable-property step of a Simulation: applies the properties that are due and makes the
+/// simulation follow what changed (a fresh neighbour list after a radius change, the per-entry
+/// contact properties, the stored conductances of a thermal analysis, the conduction limit). A
+/// component of `Simulation` (simulation.hpp): static functions over the simulation's state,
+/// which declares it a friend.
+template <class Sim>
+struct VariablePropertyStep {
+  using SearchT = typename Sim::search_type;
+  static constexpr bool thermal = Sim::thermal;
+  using Heat = HeatStep<Sim>;
+  using Neighbours = NeighbourRebuild<Sim>;
+
+  /// Applies the variable properties that are due (all active ones if `all`) at the current time;
+  /// returns true if something changed.
+  static bool apply(Sim& s, bool all, const std::vector<char>* only = nullptr) {
+    if (s.vprops_.empty()) return false;
+    s.ensure_groups();
+    auto& p = s.particles_;
+    const auto changes = s.vprops_.apply(p, s.shape_, s.cond_.members, s.time_, s.step_, all, only);
+    const bool radius = changes.radius, contact = changes.contact, any = changes.any;
+    const bool thermal_change = changes.thermal;
+    if (radius) {
+      // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
+      for (double r : p.radius)
+        s.r_max_ = std::max(s.r_max_, r);
+      s.skin_ = s.moves() ? SearchT::skin(s.params_.search, s.r_max_) : 0.0;
+      if (s.heats()) s.cutoff_ = s.largest_cutoff();
+      if (s.initialized_) Neighbours::rebuild(s);
+    } else if (contact && s.initialized_) {
+      Neighbours::refresh_pair_cache(s);
+    }
+    if constexpr (thermal) {
+      if (any && s.initialized_ && s.analysis() == Analysis::thermal) Heat::store_conductances(s);
+      if (thermal_change && s.initialized_ && s.heats()) {
+        // the conduction limit moves with the conductivities and heat capacities
+        const double limit = s.conduction_time_step();
+        if (s.dt_ > limit)
+          throw InputError(
+              "Simulation: time_step = " + detail::to_text(s.dt_) +
+              " s is above the conduction limit " + detail::to_text(limit) +
+              " s reached at t = " + detail::to_text(s.time_) +
+              " s by a variable property (conductivity, heat capacity, density or radius); valid "
+              "range: (0, " +
+              detail::to_text(limit) + "] s (give a smaller time_step or auto_time_step_factor)");
+      }
+    }
+    return any;
+  }
+};
+
+} // namespace grain::detail
