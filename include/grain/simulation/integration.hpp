@@ -192,10 +192,11 @@ struct Motion {
     // fit in the caches).
 #pragma omp parallel reduction(max : d2) if (n >= parallel_threshold)
     {
+      Sim& sim = s; // held by each thread (not read through the team's shared reference)
       const auto [lo, hi] = detail::static_share(n);
       for (long i = lo; i < hi; ++i)
         d2 = std::max(
-            d2, detail::nan_as_inf(fused_one<Kick, Check>(s, static_cast<std::size_t>(i), f)));
+            d2, detail::nan_as_inf(fused_one<Kick, Check>(sim, static_cast<std::size_t>(i), f)));
     }
     return d2;
   }
