@@ -431,12 +431,17 @@ inline SpringState init_spring(const SpringParams& p, const SpringKinematics& k0
   return st;
 }
 
-/// Evaluates the spring at time t [s] after a step h [s] (h is the increment used for the
-/// tangential history), with the effective mass m >= 0 [kg] for the damping ratio. Updates `st`.
-/// The parameters must have passed `validate` (done by `init_spring`).
-inline SpringResult evaluate(const SpringParams& p, SpringState& st, const SpringKinematics& k,
-                             double t, double h, double effective_mass) {
-  SpringResult r;
+namespace detail {
+
+/// The unit direction e of a spring (zero if undefined) and its length L = e . (p2 - p1) [m].
+struct SpringAxis {
+  Vec3 e = Vec3::Zero();
+  double length = 0.0;
+};
+
+/// The direction and length of the spring's geometry for the kinematics `k` (see the table in
+/// the file comment; the plane: e = -n).
+inline SpringAxis spring_axis(const SpringParams& p, const SpringKinematics& k) {
   const Vec3 d = k.p2 - k.p1;
   Vec3 e = Vec3::Zero();
   double length = 0.0;
@@ -461,6 +466,96 @@ inline SpringResult evaluate(const SpringParams& p, SpringState& st, const Sprin
     length = e.dot(d);
     break;
   }
+  return {e, length};
+}
+
+/// The elastic force [N] of a spring being unloaded by an unspring rule, at the stroke s [m]:
+/// abs(f) decreases by the rule's curve of the accumulated abs(stroke increments); at zero force
+/// or the end of the curve the spring becomes inactive. Updates the state's rule path and
+/// activity.
+inline double rule_unloading_force(SpringState& st, double s) {
+  st.rule_path += std::abs(s - st.stroke);
+  const double drop = (*st.rule_unload)(st.rule_path);
+  double f = std::abs(st.rule_force0) - drop;
+  if (f <= 0.0 || st.rule_path >= st.rule_unload->x_back()) {
+    f = 0.0;
+    st.rule_unload = nullptr;
+    st.active = false;
+    st.code = spring_code::inactive;
+  }
+  return std::copysign(f, st.rule_force0);
+}
+
+/// The elastic force f [N] at the stroke s [m] and time t [s], and its tangent stiffness k
+/// [N/m]: the loading/unloading model if `unload` is given, else table(s - offset(t)). Updates
+/// the yield and hysteresis state.
+inline double elastic_force(const SpringParams& p, SpringState& st, double s, double t, double& k) {
+  const double o = st.yielded && p.unload ? st.sigma : p.offset(t);
+  if (p.unload) return hysteretic_force(p, st, s, o, k);
+  const double f = p.spring(s - o);
+  k = table_slope(p.spring, s - o);
+  if (f > p.fyt || f < p.fyc) st.yielded = true;
+  return f;
+}
+
+/// The dashpot coefficient c [N s/m] and force f_d [N] at the stroke rate v [m/s]: the dashpot
+/// table and its slope, or c = 2 xi sqrt(k m) with the tangent stiffness k [N/m] and the
+/// effective mass m [kg]; both zero without damping.
+inline void dashpot_force(const SpringParams& p, double v, double k, double effective_mass,
+                          double& c, double& fd) {
+  if (p.dashpot) {
+    fd = (*p.dashpot)(v);
+    c = table_slope(*p.dashpot, v);
+  } else if (p.damping_ratio > 0.0) {
+    c = 2.0 * p.damping_ratio * std::sqrt(std::max(k, 0.0) * effective_mass);
+    fd = c * v;
+  }
+}
+
+/// The tangential friction force F_t [N] on point 1 for the total axial force F [N], the relative
+/// velocity vrel = v2 - v1 [m/s] with stroke rate v [m/s] along e, the tangent stiffness k
+/// [N/m], the dashpot coefficient c [N s/m] and the step h [s] (see Friction in the file
+/// comment); zero without friction. Updates the tangential displacement and the slip flag.
+inline Vec3 friction_force(const SpringParams& p, SpringState& st, const Vec3& e, const Vec3& vrel,
+                           double v, double F, double k, double c, double h) {
+  Vec3 ft = Vec3::Zero();
+  st.slipping = false;
+  if (!(p.friction > 0.0)) return ft;
+  const Vec3 vt = vrel - v * e;
+  const double limit = p.friction * std::abs(F);
+  if (p.kskn == 0.0) {
+    const double n = vt.norm();
+    if (n > 0.0) ft = (limit / n) * vt;
+    st.slipping = n > 0.0;
+    return ft;
+  }
+  Vec3 xi = load<3>(st.tangential);
+  const double len = xi.norm();
+  xi -= xi.dot(e) * e;
+  const double plen = xi.norm();
+  if (plen > 0.0) xi *= len / plen;
+  xi += h * vt;
+  const double ks = p.kskn * k, cs = p.kskn * c;
+  ft = ks * xi + cs * vt;
+  const double n = ft.norm();
+  if (n > limit) {
+    ft *= limit / n;
+    xi = ks > 0.0 ? Vec3((ft - cs * vt) / ks) : Vec3(Vec3::Zero());
+    st.slipping = true;
+  }
+  store<3>(st.tangential, xi);
+  return ft;
+}
+
+} // namespace detail
+
+/// Evaluates the spring at time t [s] after a step h [s] (h is the increment used for the
+/// tangential history), with the effective mass m >= 0 [kg] for the damping ratio. Updates `st`.
+/// The parameters must have passed `validate` (done by `init_spring`).
+inline SpringResult evaluate(const SpringParams& p, SpringState& st, const SpringKinematics& k,
+                             double t, double h, double effective_mass) {
+  SpringResult r;
+  const auto [e, length] = detail::spring_axis(p, k);
   const double s = length - st.stroke0;
   const Vec3 vrel = k.v2 - k.v1;
   const double v = e.dot(vrel);
@@ -482,70 +577,19 @@ inline SpringResult evaluate(const SpringParams& p, SpringState& st, const Sprin
 
   // being unloaded by an unspring rule: abs(f) decreases with every stroke increment
   if (st.rule_unload) {
-    st.rule_path += std::abs(s - st.stroke);
-    const double drop = (*st.rule_unload)(st.rule_path);
-    double f = std::abs(st.rule_force0) - drop;
-    if (f <= 0.0 || st.rule_path >= st.rule_unload->x_back()) {
-      f = 0.0;
-      st.rule_unload = nullptr;
-      st.active = false;
-      st.code = spring_code::inactive;
-    }
-    f = std::copysign(f, st.rule_force0);
+    const double f = detail::rule_unloading_force(st, s);
     r.elastic = r.total = f;
     r.force = f * e;
     return finish(f);
   }
 
-  const double o = st.yielded && p.unload ? st.sigma : p.offset(t);
   double kt = 0.0;
-  double f = 0.0;
-  if (p.unload) {
-    f = detail::hysteretic_force(p, st, s, o, kt);
-  } else {
-    f = p.spring(s - o);
-    kt = detail::table_slope(p.spring, s - o);
-    if (f > p.fyt || f < p.fyc) st.yielded = true;
-  }
-
+  const double f = detail::elastic_force(p, st, s, t, kt);
   double c = 0.0, fd = 0.0;
-  if (p.dashpot) {
-    fd = (*p.dashpot)(v);
-    c = detail::table_slope(*p.dashpot, v);
-  } else if (p.damping_ratio > 0.0) {
-    c = 2.0 * p.damping_ratio * std::sqrt(std::max(kt, 0.0) * effective_mass);
-    fd = c * v;
-  }
+  detail::dashpot_force(p, v, kt, effective_mass, c, fd);
   if (f == 0.0) fd = 0.0;
   const double F = f + fd;
-
-  Vec3 ft = Vec3::Zero();
-  st.slipping = false;
-  if (p.friction > 0.0) {
-    const Vec3 vt = vrel - v * e;
-    const double limit = p.friction * std::abs(F);
-    if (p.kskn == 0.0) {
-      const double n = vt.norm();
-      if (n > 0.0) ft = (limit / n) * vt;
-      st.slipping = n > 0.0;
-    } else {
-      Vec3 xi = load<3>(st.tangential);
-      const double len = xi.norm();
-      xi -= xi.dot(e) * e;
-      const double plen = xi.norm();
-      if (plen > 0.0) xi *= len / plen;
-      xi += h * vt;
-      const double ks = p.kskn * kt, cs = p.kskn * c;
-      ft = ks * xi + cs * vt;
-      const double n = ft.norm();
-      if (n > limit) {
-        ft *= limit / n;
-        xi = ks > 0.0 ? Vec3((ft - cs * vt) / ks) : Vec3(Vec3::Zero());
-        st.slipping = true;
-      }
-      store<3>(st.tangential, xi);
-    }
-  }
+  const Vec3 ft = detail::friction_force(p, st, e, vrel, v, F, kt, c, h);
 
   r.elastic = f;
   r.damping = fd;

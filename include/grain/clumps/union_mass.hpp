@@ -175,14 +175,35 @@ XExtent x_extent(const std::vector<V>& centres, const std::vector<double>& radii
 } // namespace detail
 
 namespace detail {
-/// union_moments about the origin of the given centres (see the public functions).
-inline UnionMoments<3> union_moments_here(const std::vector<Vec3>& centres,
-                                          const std::vector<double>& radii,
-                                          const std::string& object = "clump") {
-  detail::check_members(object, centres, radii);
+/// Adds to `cuts` the x-coordinates of the points common to the spheres i, j and k
+/// (trilateration in the frame of i, j, k): centre ci and radius ri of sphere i, unit direction
+/// u from i to j at distance L [m] and radius rj of sphere j, centre ck and radius rk of sphere k.
+inline void triple_point_cuts(const Vec3& ci, double ri, const Vec3& u, double L, double rj,
+                              const Vec3& ck, double rk, std::vector<double>& cuts) {
+  const Vec3 e1 = u;
+  const Vec3 dk = ck - ci;
+  const double ix = e1.dot(dk);
+  Vec3 e2 = dk - ix * e1;
+  const double e2n = e2.norm();
+  if (!(e2n > 1e-14 * L)) return;
+  e2 /= e2n;
+  const Vec3 e3 = e1.cross(e2);
+  const double jy = e2.dot(dk);
+  const double x = (ri * ri - rj * rj + L * L) / (2.0 * L);
+  const double y = (ri * ri - rk * rk + ix * ix + jy * jy) / (2.0 * jy) - ix / jy * x;
+  const double z2 = ri * ri - x * x - y * y;
+  if (z2 < 0.0) return;
+  const double z = std::sqrt(z2);
+  cuts.push_back((ci + x * e1 + y * e2 + z * e3).x());
+  cuts.push_back((ci + x * e1 + y * e2 - z * e3).x());
+}
+
+/// The x-range of a union of spheres and its x-breakpoints: the ends of the spheres, the
+/// x-extents of the circles in which two spheres meet and the points common to three spheres.
+inline XExtent sphere_union_x_cuts(const std::vector<Vec3>& centres,
+                                   const std::vector<double>& radii) {
   const std::size_t n = centres.size();
-  // x pieces: sphere ends, x-extents of pairwise intersection circles, triple points
-  auto [x0, x1, cuts] = detail::x_extent(centres, radii);
+  XExtent ext = x_extent(centres, radii);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const Vec3 d = centres[j] - centres[i];
@@ -193,85 +214,94 @@ inline UnionMoments<3> union_moments_here(const std::vector<Vec3>& centres,
       const double a = (ri * ri - rj * rj + L * L) / (2.0 * L);
       const double rho = std::sqrt(std::max(ri * ri - a * a, 0.0));
       const double px = centres[i].x() + a * u.x();
-      const double ext = rho * std::sqrt(std::max(1.0 - u.x() * u.x(), 0.0));
-      cuts.push_back(px - ext);
-      cuts.push_back(px + ext);
-      for (std::size_t k = j + 1; k < n; ++k) {
-        // points common to spheres i, j, k (trilateration in the frame of i, j, k)
-        const Vec3 e1 = u;
-        const Vec3 dk = centres[k] - centres[i];
-        const double ix = e1.dot(dk);
-        Vec3 e2 = dk - ix * e1;
-        const double e2n = e2.norm();
-        if (!(e2n > 1e-14 * L)) continue;
-        e2 /= e2n;
-        const Vec3 e3 = e1.cross(e2);
-        const double jy = e2.dot(dk);
-        const double rk = radii[k];
-        const double x = (ri * ri - rj * rj + L * L) / (2.0 * L);
-        const double y = (ri * ri - rk * rk + ix * ix + jy * jy) / (2.0 * jy) - ix / jy * x;
-        const double z2 = ri * ri - x * x - y * y;
-        if (z2 < 0.0) continue;
-        const double z = std::sqrt(z2);
-        cuts.push_back((centres[i] + x * e1 + y * e2 + z * e3).x());
-        cuts.push_back((centres[i] + x * e1 + y * e2 - z * e3).x());
-      }
+      const double e = rho * std::sqrt(std::max(1.0 - u.x() * u.x(), 0.0));
+      ext.cuts.push_back(px - e);
+      ext.cuts.push_back(px + e);
+      for (std::size_t k = j + 1; k < n; ++k)
+        triple_point_cuts(centres[i], ri, u, L, rj, centres[k], radii[k], ext.cuts);
     }
   }
+  return ext;
+}
+
+/// Scratch space of the slice integration of a union of spheres (reused between slices).
+struct SphereSliceScratch {
+  std::vector<std::pair<double, double>> iv;    ///< z-intervals on a line (x, y) [m]
+  std::vector<std::pair<Vec2, double>> circles; ///< slice circles: centre (y, z), radius [m]
+  std::vector<double> ycuts;                    ///< y-breakpoints of the slice [m]
+};
+
+/// Adds to m (1, x, y, z, xx, yy, zz, xy, xz, yz) the weight w times the moments of the union of
+/// the z-intervals that the slice circles cut from the line (x, y).
+inline void add_line_moments(double x, double y, double w, SphereSliceScratch& sc,
+                             std::array<double, 10>& m) {
+  auto& iv = sc.iv;
+  iv.clear();
+  for (const auto& [c, rho] : sc.circles) {
+    const double dy = y - c.x();
+    const double h2 = rho * rho - dy * dy;
+    if (h2 > 0.0) {
+      const double h = std::sqrt(h2);
+      iv.push_back({c.y() - h, c.y() + h});
+    }
+  }
+  if (iv.empty()) return;
+  const auto z = interval_union_moments(iv);
+  m[0] += w * z[0];
+  m[1] += w * x * z[0];
+  m[2] += w * y * z[0];
+  m[3] += w * z[1];
+  m[4] += w * x * x * z[0];
+  m[5] += w * y * y * z[0];
+  m[6] += w * z[2];
+  m[7] += w * x * y * z[0];
+  m[8] += w * x * z[1];
+  m[9] += w * y * z[1];
+}
+
+/// Adds to m the weight wx times the moments of the union's slice at x: the slice circles,
+/// integrated piecewise in y between their ends and pairwise intersections.
+inline void add_slice_moments(const std::vector<Vec3>& centres, const std::vector<double>& radii,
+                              double x, double wx, SphereSliceScratch& sc,
+                              std::array<double, 10>& m) {
+  sc.circles.clear();
+  sc.ycuts.clear();
+  double y0 = 1e300, y1 = -1e300;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    const double dx = x - centres[i].x();
+    const double r2 = radii[i] * radii[i] - dx * dx;
+    if (r2 <= 0.0) continue;
+    const double rho = std::sqrt(r2);
+    const Vec2 c(centres[i].y(), centres[i].z());
+    for (const auto& [q, s] : sc.circles)
+      circle_intersections_y(c, rho, q, s, sc.ycuts, 0);
+    sc.circles.push_back({c, rho});
+    sc.ycuts.push_back(c.x() - rho);
+    sc.ycuts.push_back(c.x() + rho);
+    y0 = std::min(y0, c.x() - rho);
+    y1 = std::max(y1, c.x() + rho);
+  }
+  if (sc.circles.empty()) return;
+  const auto ys = pieces(y0, y1, sc.ycuts);
+  for (std::size_t q = 0; q + 1 < ys.size(); ++q)
+    cosine_panel<24>(ys[q], ys[q + 1],
+                     [&](double y, double wy) { add_line_moments(x, y, wx * wy, sc, m); });
+}
+
+/// union_moments about the origin of the given centres (see the public functions).
+inline UnionMoments<3> union_moments_here(const std::vector<Vec3>& centres,
+                                          const std::vector<double>& radii,
+                                          const std::string& object = "clump") {
+  detail::check_members(object, centres, radii);
+  // x pieces: sphere ends, x-extents of pairwise intersection circles, triple points
+  auto [x0, x1, cuts] = detail::sphere_union_x_cuts(centres, radii);
   const auto xs = detail::pieces(x0, x1, cuts);
   std::array<double, 10> m{}; // 1, x, y, z, xx, yy, zz, xy, xz, yz
-  std::vector<std::pair<double, double>> iv;
-  std::vector<std::pair<Vec2, double>> circles;
-  std::vector<double> ycuts;
-  for (std::size_t p = 0; p + 1 < xs.size(); ++p) {
+  SphereSliceScratch sc;
+  for (std::size_t p = 0; p + 1 < xs.size(); ++p)
     detail::cosine_panel<24>(xs[p], xs[p + 1], [&](double x, double wx) {
-      circles.clear();
-      ycuts.clear();
-      double y0 = 1e300, y1 = -1e300;
-      for (std::size_t i = 0; i < n; ++i) {
-        const double dx = x - centres[i].x();
-        const double r2 = radii[i] * radii[i] - dx * dx;
-        if (r2 <= 0.0) continue;
-        const double rho = std::sqrt(r2);
-        const Vec2 c(centres[i].y(), centres[i].z());
-        for (const auto& [q, s] : circles)
-          detail::circle_intersections_y(c, rho, q, s, ycuts, 0);
-        circles.push_back({c, rho});
-        ycuts.push_back(c.x() - rho);
-        ycuts.push_back(c.x() + rho);
-        y0 = std::min(y0, c.x() - rho);
-        y1 = std::max(y1, c.x() + rho);
-      }
-      if (circles.empty()) return;
-      const auto ys = detail::pieces(y0, y1, ycuts);
-      for (std::size_t q = 0; q + 1 < ys.size(); ++q) {
-        detail::cosine_panel<24>(ys[q], ys[q + 1], [&](double y, double wy) {
-          iv.clear();
-          for (const auto& [c, rho] : circles) {
-            const double dy = y - c.x();
-            const double h2 = rho * rho - dy * dy;
-            if (h2 > 0.0) {
-              const double h = std::sqrt(h2);
-              iv.push_back({c.y() - h, c.y() + h});
-            }
-          }
-          if (iv.empty()) return;
-          const auto z = detail::interval_union_moments(iv);
-          const double w = wx * wy;
-          m[0] += w * z[0];
-          m[1] += w * x * z[0];
-          m[2] += w * y * z[0];
-          m[3] += w * z[1];
-          m[4] += w * x * x * z[0];
-          m[5] += w * y * y * z[0];
-          m[6] += w * z[2];
-          m[7] += w * x * y * z[0];
-          m[8] += w * x * z[1];
-          m[9] += w * y * z[1];
-        });
-      }
+      detail::add_slice_moments(centres, radii, x, wx, sc, m);
     });
-  }
   UnionMoments<3> u;
   u.measure = m[0];
   u.centroid = Vec3(m[1], m[2], m[3]) / m[0];

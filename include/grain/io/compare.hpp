@@ -548,6 +548,81 @@ void run_variant(Scenario& scenario, const CompareOptions& o, const Tuple& figur
   }
 }
 
+/// Checks the run options of io::compare (duration or steps, repeats, history interval);
+/// throws InputError naming `who`.
+inline void check_compare_options(const CompareOptions& o, const std::string& who) {
+  if (o.duration != 0.0 || o.steps == 0)
+    grain::detail::require(std::isfinite(o.duration) && o.duration > 0.0 && o.steps == 0, who,
+                           "duration", o.duration,
+                           "(0, inf) s, with steps = 0 (or duration = 0 and steps >= 1)");
+  else if (o.steps < 1)
+    grain::detail::require(false, who, "steps", o.steps, "[1, inf) (with duration = 0)");
+  grain::detail::require(o.repeats >= 1, who, "repeats", o.repeats, "[1, inf)");
+  if (!o.history.empty())
+    grain::detail::require(std::isfinite(o.history_interval) && o.history_interval > 0.0, who,
+                           "history_interval", o.history_interval,
+                           "(0, inf) s when a history is written");
+}
+
+/// The names of the variants: `o.names`, checked (one per variant, non-empty, distinct;
+/// InputError naming `who` otherwise), or, if empty, those made of the models.
+template <class... Contacts>
+std::vector<std::string> variant_names(const CompareOptions& o, const std::string& who) {
+  constexpr std::size_t n = sizeof...(Contacts);
+  std::vector<std::string> names;
+  if (o.names.empty()) {
+    if constexpr (n > 0) names = default_names<Contacts...>();
+    return names;
+  }
+  if (o.names.size() != n)
+    throw InputError(who + ": names has " + std::to_string(o.names.size()) +
+                     " entries, which is invalid; valid: one per variant (" + std::to_string(n) +
+                     "), or none for names made of the models");
+  names = o.names;
+  for (std::size_t v = 0; v < n; ++v) {
+    if (names[v].empty())
+      throw InputError(who + ": names[" + std::to_string(v) +
+                       "] = \"\" is invalid; valid: a non-empty name");
+    for (std::size_t w = 0; w < v; ++w)
+      if (names[w] == names[v])
+        throw InputError(who + ": names[" + std::to_string(v) + "] = \"" + names[v] +
+                         "\" is invalid; valid: a name no other variant has");
+  }
+  return names;
+}
+
+/// Sets the history path of every row, `<history><slug of the name>.csv` (a repeated slug gets
+/// "_2", "_3", ...), and creates each file, so that a bad path fails before any variant runs.
+inline void open_histories(Comparison& result, const CompareOptions& o, const std::string& who) {
+  std::vector<std::string> used;
+  for (auto& row : result.rows) {
+    std::string s = slug(row.name);
+    for (int k = 2; std::find(used.begin(), used.end(), s) != used.end(); ++k)
+      s = slug(row.name) + "_" + std::to_string(k);
+    used.push_back(s);
+    row.history = o.history + s + ".csv";
+    Comparison::open_output(row.history, who + " (history)");
+  }
+}
+
+/// Prints the table to `o.out` (if any) and writes it as CSV to `table_file` (if open); throws
+/// InputError naming `who` if the CSV could not be written.
+inline void report_comparison(const Comparison& result, const CompareOptions& o,
+                              std::optional<std::ofstream>& table_file, const std::string& who) {
+  if (o.out) {
+    std::fprintf(o.out, "%s", result.table().c_str());
+    std::fflush(o.out);
+  }
+  if (table_file) {
+    result.write_csv(*table_file);
+    table_file->flush();
+    if (!*table_file)
+      throw InputError(who + ": csv = \"" + o.csv +
+                       "\" could not be written; valid: a writable "
+                       "file");
+  }
+}
+
 } // namespace detail
 
 /// Runs the scenario for each contact type of `variants<Contacts...>` as a `SimOf<Contact>` and
@@ -565,37 +640,8 @@ Comparison compare(variants<Contacts...>, Scenario&& scenario, const CompareOpti
     throw InputError(who + ": figures = {} (none) is invalid; valid: at least one figure, e.g. "
                            "io::column(name, f)");
   const CompareOptions& o = options;
-  if (o.duration != 0.0 || o.steps == 0)
-    grain::detail::require(std::isfinite(o.duration) && o.duration > 0.0 && o.steps == 0, who,
-                           "duration", o.duration,
-                           "(0, inf) s, with steps = 0 (or duration = 0 and steps >= 1)");
-  else if (o.steps < 1)
-    grain::detail::require(false, who, "steps", o.steps, "[1, inf) (with duration = 0)");
-  grain::detail::require(o.repeats >= 1, who, "repeats", o.repeats, "[1, inf)");
-  if (!o.history.empty())
-    grain::detail::require(std::isfinite(o.history_interval) && o.history_interval > 0.0, who,
-                           "history_interval", o.history_interval,
-                           "(0, inf) s when a history is written");
-
-  std::vector<std::string> names;
-  if (o.names.empty()) {
-    if constexpr (n > 0) names = detail::default_names<Contacts...>();
-  } else {
-    if (o.names.size() != n)
-      throw InputError(who + ": names has " + std::to_string(o.names.size()) +
-                       " entries, which is invalid; valid: one per variant (" + std::to_string(n) +
-                       "), or none for names made of the models");
-    names = o.names;
-    for (std::size_t v = 0; v < n; ++v) {
-      if (names[v].empty())
-        throw InputError(who + ": names[" + std::to_string(v) +
-                         "] = \"\" is invalid; valid: a non-empty name");
-      for (std::size_t w = 0; w < v; ++w)
-        if (names[w] == names[v])
-          throw InputError(who + ": names[" + std::to_string(v) + "] = \"" + names[v] +
-                           "\" is invalid; valid: a name no other variant has");
-    }
-  }
+  detail::check_compare_options(o, who);
+  const std::vector<std::string> names = detail::variant_names<Contacts...>(o, who);
 
   Comparison result;
   result.rows.resize(n);
@@ -604,17 +650,7 @@ Comparison compare(variants<Contacts...>, Scenario&& scenario, const CompareOpti
   // output files first: a bad path fails before any variant runs
   std::optional<std::ofstream> table_file;
   if (!o.csv.empty()) table_file.emplace(Comparison::open_output(o.csv, who + " (csv)"));
-  if (!o.history.empty()) {
-    std::vector<std::string> used;
-    for (std::size_t v = 0; v < n; ++v) {
-      std::string s = detail::slug(names[v]);
-      for (int k = 2; std::find(used.begin(), used.end(), s) != used.end(); ++k)
-        s = detail::slug(names[v]) + "_" + std::to_string(k);
-      used.push_back(s);
-      result.rows[v].history = o.history + s + ".csv";
-      Comparison::open_output(result.rows[v].history, who + " (history)");
-    }
-  }
+  if (!o.history.empty()) detail::open_histories(result, o, who);
 
   const std::tuple<Figures...> figure_set{std::move(figures)...};
   std::size_t v = 0;
@@ -632,18 +668,7 @@ Comparison compare(variants<Contacts...>, Scenario&& scenario, const CompareOpti
   (run_one(std::type_identity<Contacts>{}), ...);
   (void)run_one; // an empty list runs nothing
 
-  if (o.out) {
-    std::fprintf(o.out, "%s", result.table().c_str());
-    std::fflush(o.out);
-  }
-  if (table_file) {
-    result.write_csv(*table_file);
-    table_file->flush();
-    if (!*table_file)
-      throw InputError(who + ": csv = \"" + o.csv +
-                       "\" could not be written; valid: a writable "
-                       "file");
-  }
+  detail::report_comparison(result, o, table_file, who);
   return result;
 }
 

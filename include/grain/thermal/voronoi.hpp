@@ -317,12 +317,13 @@ double radius_of_face(double measure) {
     return std::sqrt(measure / std::numbers::pi);
 }
 
+/// Checks the arguments of `voronoi_radii`: the particles and the neighbour list, and, if walls
+/// are given, one plane with a finite point and a finite non-zero normal per wall entry of the
+/// list.
 template <int D>
-CellRadii voronoi_radii(std::span<const Vec<D>> x, std::span<const double> radius,
-                        const NeighborList& nl, std::span<const WallPlane<D>> walls,
-                        const VoronoiOptions& opt) {
-  const char* who = "voronoi_radii";
-  check_particles<Vec<D>>(who, x, radius, &nl);
+void check_voronoi_input(std::span<const Vec<D>> x, std::span<const double> radius,
+                         const NeighborList& nl, std::span<const WallPlane<D>> walls) {
+  check_particles<Vec<D>>("voronoi_radii", x, radius, &nl);
   const std::string object = "cells::voronoi_radii";
   require(walls.empty() || walls.size() == nl.walls.size(), object, "walls.size()", walls.size(),
           "0 or the number of wall entries of the neighbour list");
@@ -335,6 +336,219 @@ CellRadii voronoi_radii(std::span<const Vec<D>> x, std::span<const double> radiu
     require(walls[k].point.allFinite() && walls[k].normal.allFinite() &&
                 walls[k].normal.norm() > 0.0,
             object, "wall entry", k, "a finite point and a finite non-zero normal");
+}
+
+/// The weight w_i of particle i in the lifted points [m^2]: R_i^2 (power diagram) or 0
+/// (Voronoi diagram).
+inline double lift_weight(std::span<const double> radius, bool power, std::size_t i) {
+  return power ? radius[i] * radius[i] : 0.0;
+}
+
+/// The bounding box of the centres enlarged by `margin` [m] on every side.
+template <int D>
+Box<D> margin_box(std::span<const Vec<D>> x, double margin) {
+  Box<D> box{x[0], x[0]};
+  for (const auto& p : x) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  box.lo.array() -= margin;
+  box.hi.array() += margin;
+  return box;
+}
+
+/// The qhull input, row by row: the lifted points (y, |y|^2 - w / scale^2) of the centres
+/// normalised as y = (x - centre) / scale, then the 2^D far generators (+-1, ..., +-1, D).
+template <int D>
+std::vector<double> lifted_points(std::span<const Vec<D>> x, std::span<const double> radius,
+                                  bool power, const Vec<D>& centre, double scale) {
+  const std::size_t n = x.size();
+  constexpr int corners = 1 << D;
+  const std::size_t total = n + corners;
+  std::vector<double> pts(total * (D + 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec<D> y = (x[i] - centre) / scale;
+    for (int d = 0; d < D; ++d)
+      pts[i * (D + 1) + d] = y[d];
+    pts[i * (D + 1) + D] = y.squaredNorm() - lift_weight(radius, power, i) / (scale * scale);
+  }
+  for (int c = 0; c < corners; ++c) {
+    double* p = &pts[(n + c) * (D + 1)];
+    for (int d = 0; d < D; ++d)
+      p[d] = (c >> d) & 1 ? 1.0 : -1.0;
+    p[D] = D;
+  }
+  return pts;
+}
+
+/// A power or Voronoi diagram as the lower convex hull of the lifted points gives it.
+template <int D>
+struct CellDiagram {
+  std::vector<Vec<D>> point; ///< diagram points of the lower facets [m]
+  /// (i << 32 | j, point index) for every pair i < j of particles of a facet, sorted
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> rec;
+  std::vector<char> in_diagram; ///< 1 for a particle whose cell is not empty
+
+  /// The records [first, second) of the pair (i, j), in either order.
+  auto range(std::uint32_t i, std::uint32_t j) const {
+    const std::uint64_t key = std::uint64_t(std::min(i, j)) << 32 | std::max(i, j);
+    const auto lo = std::lower_bound(rec.begin(), rec.end(), std::make_pair(key, std::uint32_t(0)));
+    auto hi = lo;
+    while (hi != rec.end() && hi->first == key)
+      ++hi;
+    return std::make_pair(lo, hi);
+  }
+};
+
+/// Runs qhull on the lifted points and collects the diagram points of the lower facets and the
+/// pairs of particles that meet at each (see the file comment); throws on a qhull failure.
+template <int D>
+CellDiagram<D> cell_diagram(std::span<const Vec<D>> x, std::span<const double> radius, bool power,
+                            const Vec<D>& centre, double scale, const char* who) {
+  const std::size_t n = x.size();
+  std::vector<double> pts = lifted_points<D>(x, radius, power, centre, scale);
+  Qhull q;
+  const int code = q.run(D + 1, static_cast<int>(pts.size() / (D + 1)), pts.data(), "");
+  if (code != 0) throw q.failure(who, code);
+
+  CellDiagram<D> g;
+  g.in_diagram.assign(n, 0);
+  std::vector<std::uint32_t> ids;
+  qhT* qh = q.get();
+  for_each_facet(qh, [&](facetT* f) {
+    const double nz = f->normal[D];
+    if (!(nz < 0.0)) return; // upper or vertical facet: no finite diagram point
+    ids.clear();
+    for_each_vertex(qh, f, [&](int id) {
+      if (id >= 0 && static_cast<std::size_t>(id) < n)
+        ids.push_back(static_cast<std::uint32_t>(id));
+    });
+    for (std::uint32_t id : ids)
+      g.in_diagram[id] = 1;
+    if (ids.size() < 2) return;
+    Vec<D> y;
+    for (int d = 0; d < D; ++d)
+      y[d] = -f->normal[d] / (2.0 * nz);
+    const Vec<D> c = centre + scale * y;
+    if (!c.allFinite()) return;
+    const auto fid = static_cast<std::uint32_t>(g.point.size());
+    g.point.push_back(c);
+    std::sort(ids.begin(), ids.end());
+    for (std::size_t a = 0; a < ids.size(); ++a)
+      for (std::size_t b = a + 1; b < ids.size(); ++b)
+        g.rec.push_back({std::uint64_t(ids[a]) << 32 | ids[b], fid});
+  });
+  std::sort(g.rec.begin(), g.rec.end());
+  return g;
+}
+
+/// r_ij of every pair of the neighbour list from the diagram's faces clipped to the half-spaces
+/// `sides` (0 below 1e-9 |x_j - x_i|), into `pair`.
+template <int D>
+void pair_radii(std::span<const Vec<D>> x, const NeighborList& nl, const CellDiagram<D>& g,
+                const std::vector<HalfSpace<D>>& sides, std::vector<double>& pair) {
+  const std::size_t n = x.size();
+#pragma omp parallel if (n > 1024)
+  {
+    std::vector<Vec<D>> c;
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const auto k : nl.pair_entries(i)) {
+        const std::uint32_t j = nl.partners[k];
+        if (j == i) continue;
+        const auto [lo, hi] = g.range(static_cast<std::uint32_t>(i), j);
+        c.clear();
+        for (auto it = lo; it != hi; ++it)
+          c.push_back(g.point[it->second]);
+        const double r = radius_of_face<D>(face_measure(x[i], x[j], c, sides));
+        pair[k] = r > 1e-9 * (x[j] - x[i]).norm() ? r : 0.0;
+      }
+    }
+  }
+}
+
+/// The diagram neighbours of each of n particles (the half-spaces that bound its cell) from the
+/// sorted pair records: row i lists every j whose cell shares a facet point with i's.
+inline FullRows diagram_neighbours(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& rec,
+                                   std::size_t n) {
+  FullRows r;
+  r.offsets.assign(n + 1, 0);
+  std::uint64_t last = ~std::uint64_t(0);
+  for (const auto& [key, fid] : rec) {
+    if (key == last) continue;
+    last = key;
+    ++r.offsets[(key >> 32) + 1];
+    ++r.offsets[(key & 0xffffffffu) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    r.offsets[i + 1] += r.offsets[i];
+  r.items.resize(r.offsets[n]);
+  std::vector<std::uint32_t> fill(r.offsets.begin(), r.offsets.end() - 1);
+  last = ~std::uint64_t(0);
+  for (const auto& [key, fid] : rec) {
+    if (key == last) continue;
+    last = key;
+    const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
+    r.items[fill[a]++] = b;
+    r.items[fill[b]++] = a;
+  }
+  return r;
+}
+
+/// The clipping boxes of the wall faces: `box` (the centres' box enlarged by `margin` [m]), the
+/// limit `outer` (enlarged by 2 margin), and the margin.
+template <int D>
+struct WallClip {
+  Box<D> box, outer;
+  double margin = 0.0;
+};
+
+/// r_iw of every particle-wall entry of the neighbour list (see the file comment), into `wall`;
+/// particles with an empty cell keep 0.
+template <int D>
+void wall_radii(std::span<const Vec<D>> x, std::span<const double> radius, bool power,
+                const NeighborList& nl, std::span<const WallPlane<D>> walls,
+                const CellDiagram<D>& g, const WallClip<D>& clip, std::vector<double>& wall) {
+  const std::size_t n = x.size();
+  const FullRows adj = diagram_neighbours(g.rec, n);
+  const Box<D>& box = clip.box;
+  const Box<D>& outer = clip.outer;
+  const double margin = clip.margin;
+#pragma omp parallel if (n > 1024)
+  {
+    std::vector<HalfSpace<D>> h;
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!g.in_diagram[i]) continue;
+      for (const auto k : nl.wall_entries(i)) {
+        const Vec<D> nrm = walls[k].normal.normalized();
+        const Vec<D> foot = x[i] - (x[i] - walls[k].point).dot(nrm) * nrm;
+        const Vec<D> flo = foot.array() - margin, fhi = foot.array() + margin;
+        const Box<D> bw{box.lo.cwiseMin(flo).cwiseMax(outer.lo),
+                        box.hi.cwiseMax(fhi).cwiseMin(outer.hi)};
+        if (bw.empty()) continue;
+        h = box_sides(bw);
+        for (std::uint32_t a = adj.offsets[i]; a < adj.offsets[i + 1]; ++a) {
+          const std::uint32_t j = adj.items[a];
+          const Vec<D> d = x[j] - x[i];
+          h.push_back({2.0 * d, d.squaredNorm() + lift_weight(radius, power, i) -
+                                    lift_weight(radius, power, j) + 2.0 * d.dot(x[i])});
+        }
+        const double size = 2.0 * ((bw.hi - bw.lo).norm() + (foot - 0.5 * (bw.lo + bw.hi)).norm());
+        wall[k] = radius_of_face<D>(wall_face_measure(foot, nrm, size, h));
+      }
+    }
+  }
+}
+
+/// `voronoi_radii` in D dimensions (see the public functions and the file comment).
+template <int D>
+CellRadii voronoi_radii(std::span<const Vec<D>> x, std::span<const double> radius,
+                        const NeighborList& nl, std::span<const WallPlane<D>> walls,
+                        const VoronoiOptions& opt) {
+  const char* who = "voronoi_radii";
+  check_voronoi_input<D>(x, radius, nl, walls);
+  const std::string object = "cells::voronoi_radii";
   const std::size_t n = x.size();
   CellRadii out;
   out.pair.assign(nl.partners.size(), 0.0);
@@ -347,144 +561,15 @@ CellRadii voronoi_radii(std::span<const Vec<D>> x, std::span<const double> radiu
   const double margin = opt.margin >= 0.0 ? opt.margin : rmax;
   require(std::isfinite(margin) && margin > 0.0, object, "margin", margin,
           "(0, inf) m (the default, the largest radius, must then be > 0)");
-  Box<D> box{x[0], x[0]};
-  for (const auto& p : x) {
-    box.lo = box.lo.cwiseMin(p);
-    box.hi = box.hi.cwiseMax(p);
-  }
-  box.lo.array() -= margin;
-  box.hi.array() += margin;
+  const Box<D> box = margin_box<D>(x, margin);
   const Box<D> outer{(box.lo.array() - margin).matrix(), (box.hi.array() + margin).matrix()};
   const Vec<D> centre = 0.5 * (box.lo + box.hi);
   const double scale = 8.0 * (0.5 * (box.hi - box.lo)).maxCoeff();
 
-  // lifted points (x, |x|^2 - w), normalised by the far box; then the 2^D far generators
-  constexpr int corners = 1 << D;
-  const std::size_t total = n + corners;
-  std::vector<double> pts(total * (D + 1));
-  auto weight = [&](std::size_t i) { return power ? radius[i] * radius[i] : 0.0; };
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec<D> y = (x[i] - centre) / scale;
-    for (int d = 0; d < D; ++d)
-      pts[i * (D + 1) + d] = y[d];
-    pts[i * (D + 1) + D] = y.squaredNorm() - weight(i) / (scale * scale);
-  }
-  for (int c = 0; c < corners; ++c) {
-    double* p = &pts[(n + c) * (D + 1)];
-    for (int d = 0; d < D; ++d)
-      p[d] = (c >> d) & 1 ? 1.0 : -1.0;
-    p[D] = D;
-  }
-  Qhull q;
-  const int code = q.run(D + 1, static_cast<int>(total), pts.data(), "");
-  if (code != 0) throw q.failure(who, code);
-
-  // diagram points of the lower facets and, for each pair of particles in a facet, a record
-  std::vector<Vec<D>> point;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> rec;
-  std::vector<char> in_diagram(n, 0);
-  std::vector<std::uint32_t> ids;
-  qhT* qh = q.get();
-  for_each_facet(qh, [&](facetT* f) {
-    const double nz = f->normal[D];
-    if (!(nz < 0.0)) return; // upper or vertical facet: no finite diagram point
-    ids.clear();
-    for_each_vertex(qh, f, [&](int id) {
-      if (id >= 0 && static_cast<std::size_t>(id) < n)
-        ids.push_back(static_cast<std::uint32_t>(id));
-    });
-    for (std::uint32_t id : ids)
-      in_diagram[id] = 1;
-    if (ids.size() < 2) return;
-    Vec<D> y;
-    for (int d = 0; d < D; ++d)
-      y[d] = -f->normal[d] / (2.0 * nz);
-    const Vec<D> c = centre + scale * y;
-    if (!c.allFinite()) return;
-    const auto fid = static_cast<std::uint32_t>(point.size());
-    point.push_back(c);
-    std::sort(ids.begin(), ids.end());
-    for (std::size_t a = 0; a < ids.size(); ++a)
-      for (std::size_t b = a + 1; b < ids.size(); ++b)
-        rec.push_back({std::uint64_t(ids[a]) << 32 | ids[b], fid});
-  });
-  std::sort(rec.begin(), rec.end());
-  auto range = [&](std::uint32_t i, std::uint32_t j) {
-    const std::uint64_t key = std::uint64_t(std::min(i, j)) << 32 | std::max(i, j);
-    const auto lo = std::lower_bound(rec.begin(), rec.end(), std::make_pair(key, std::uint32_t(0)));
-    auto hi = lo;
-    while (hi != rec.end() && hi->first == key)
-      ++hi;
-    return std::make_pair(lo, hi);
-  };
-
-  const auto sides = box_sides(box);
-#pragma omp parallel if (n > 1024)
-  {
-    std::vector<Vec<D>> c;
-#pragma omp for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-      for (const auto k : nl.pair_entries(i)) {
-        const std::uint32_t j = nl.partners[k];
-        if (j == i) continue;
-        const auto [lo, hi] = range(static_cast<std::uint32_t>(i), j);
-        c.clear();
-        for (auto it = lo; it != hi; ++it)
-          c.push_back(point[it->second]);
-        const double r = radius_of_face<D>(face_measure(x[i], x[j], c, sides));
-        out.pair[k] = r > 1e-9 * (x[j] - x[i]).norm() ? r : 0.0;
-      }
-    }
-  }
+  const CellDiagram<D> g = cell_diagram<D>(x, radius, power, centre, scale, who);
+  pair_radii<D>(x, nl, g, box_sides(box), out.pair);
   if (walls.empty()) return out;
-
-  // diagram neighbours of every particle (the half-spaces that bound its cell)
-  std::vector<std::uint32_t> deg(n + 1, 0), adj;
-  std::uint64_t last = ~std::uint64_t(0);
-  for (const auto& [key, fid] : rec) {
-    if (key == last) continue;
-    last = key;
-    ++deg[(key >> 32) + 1];
-    ++deg[(key & 0xffffffffu) + 1];
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    deg[i + 1] += deg[i];
-  adj.resize(deg[n]);
-  {
-    std::vector<std::uint32_t> fill(deg.begin(), deg.end() - 1);
-    last = ~std::uint64_t(0);
-    for (const auto& [key, fid] : rec) {
-      if (key == last) continue;
-      last = key;
-      const auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
-      adj[fill[a]++] = b;
-      adj[fill[b]++] = a;
-    }
-  }
-#pragma omp parallel if (n > 1024)
-  {
-    std::vector<HalfSpace<D>> h;
-#pragma omp for schedule(dynamic, 256)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!in_diagram[i]) continue;
-      for (const auto k : nl.wall_entries(i)) {
-        const Vec<D> nrm = walls[k].normal.normalized();
-        const Vec<D> foot = x[i] - (x[i] - walls[k].point).dot(nrm) * nrm;
-        const Vec<D> flo = foot.array() - margin, fhi = foot.array() + margin;
-        const Box<D> bw{box.lo.cwiseMin(flo).cwiseMax(outer.lo),
-                        box.hi.cwiseMax(fhi).cwiseMin(outer.hi)};
-        if (bw.empty()) continue;
-        h = box_sides(bw);
-        for (std::uint32_t a = deg[i]; a < deg[i + 1]; ++a) {
-          const std::uint32_t j = adj[a];
-          const Vec<D> d = x[j] - x[i];
-          h.push_back({2.0 * d, d.squaredNorm() + weight(i) - weight(j) + 2.0 * d.dot(x[i])});
-        }
-        const double size = 2.0 * ((bw.hi - bw.lo).norm() + (foot - 0.5 * (bw.lo + bw.hi)).norm());
-        out.wall[k] = radius_of_face<D>(wall_face_measure(foot, nrm, size, h));
-      }
-    }
-  }
+  wall_radii<D>(x, radius, power, nl, walls, g, WallClip<D>{box, outer, margin}, out.wall);
   return out;
 }
 

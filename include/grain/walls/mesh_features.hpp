@@ -248,6 +248,35 @@ private:
   /// contains the origin (then minus the best margin found).
   static double cone_margin(const std::vector<Vec3>& t);
 
+  /// Checks the arguments of `build` (sizes, finite coordinates, flat_angle, vertex indices);
+  /// throws InputError naming `object`.
+  static void check_input(const TriangleMesh& mesh, const Vec3& reference,
+                          const std::string& object, double flat_angle);
+  /// Sets the body-frame vertex positions X - reference [m] and tol from the diagonal of the
+  /// bounding box of X.
+  void place_vertices(const std::vector<Vec3>& X, const Vec3& reference);
+  /// Sets each face's vertices, unit normal and inward edge normals; throws InputError naming
+  /// `object` for a triangle with a repeated vertex or without area.
+  void build_faces(const TriangleMesh& mesh, const std::string& object);
+  /// Joins the faces' edges by their vertex pairs: each edge's direction, end tests, faces,
+  /// kind and owner, and each face's edge indices and owned edges. Two faces whose inward edge
+  /// normals sum to at most `chord_flat` make a flat edge.
+  void build_edges(double chord_flat);
+  /// Lists each vertex's edges (with the end that is the vertex) and faces (ascending).
+  void build_vertex_incidence();
+  /// Sets each used vertex's owner and convexity margin, joins the end planes of edges that go
+  /// on in a straight line through it, and marks it owned by its owner face if its cone has an
+  /// interior.
+  void build_vertex_cones(double chord_flat);
+  /// Gives edges of vertex V that go on in a straight line (directions `dirs` leaving V, summing
+  /// to at most `chord_flat`) one end plane: closed for the lower edge, open for the other.
+  void pair_straight_edges(const Vertex& V, const std::vector<Vec3>& dirs, double chord_flat);
+  /// Lists, for each face, the faces that share a vertex with it and lie in its plane (normals
+  /// within `sin_flat`), ascending.
+  void build_flat_neighbours(double sin_flat);
+  /// Lists each edge's guards: the faces coplanar with one of its faces that do not contain it.
+  void build_edge_guards();
+
   std::vector<Face> faces_;
   std::vector<Edge> edges_;
   std::vector<Vertex> vertices_;
@@ -281,6 +310,12 @@ inline bool origin_on_triangle(const Vec3& a, const Vec3& b, const Vec3& c, Vec3
     return false;
   q = p;
   return true;
+}
+
+/// "(x, y, z)" of a point, for error messages.
+inline std::string mesh_point_text(const Vec3& p) {
+  using grain::detail::to_text;
+  return "(" + to_text(p.x()) + ", " + to_text(p.y()) + ", " + to_text(p.z()) + ")";
 }
 
 } // namespace detail
@@ -320,8 +355,25 @@ inline std::shared_ptr<const MeshFeatures> MeshFeatures::build(const TriangleMes
                                                                const Vec3& reference,
                                                                const std::string& object,
                                                                double flat_angle) {
+  check_input(mesh, reference, object, flat_angle);
+  auto out = std::make_shared<MeshFeatures>();
+  MeshFeatures& m = *out;
+  m.flat_angle_ = flat_angle;
+  m.place_vertices(mesh.vertices, reference);
+  m.build_faces(mesh, object);
+  const double sin_flat = std::max(std::sin(flat_angle), 1e-12);
+  const double chord_flat = std::max(2.0 * std::sin(0.5 * flat_angle), 1e-12);
+  m.build_edges(chord_flat);
+  m.build_vertex_incidence();
+  m.build_vertex_cones(chord_flat);
+  m.build_flat_neighbours(sin_flat);
+  m.build_edge_guards();
+  return out;
+}
+
+inline void MeshFeatures::check_input(const TriangleMesh& mesh, const Vec3& reference,
+                                      const std::string& object, double flat_angle) {
   using grain::detail::require;
-  using grain::detail::to_text;
   const auto& X = mesh.vertices;
   const auto& T = mesh.triangles;
   const std::size_t nv = X.size(), nf = T.size();
@@ -329,38 +381,41 @@ inline std::shared_ptr<const MeshFeatures> MeshFeatures::build(const TriangleMes
   require(nf < (std::size_t(1) << 31) && nv < (std::size_t(1) << 31), object, "mesh size",
           std::to_string(nv) + " vertices, " + std::to_string(nf) + " triangles",
           "below 2^31 of each");
-  require(all_finite(reference), object, "reference point",
-          "(" + to_text(reference.x()) + ", " + to_text(reference.y()) + ", " +
-              to_text(reference.z()) + ")",
+  require(all_finite(reference), object, "reference point", detail::mesh_point_text(reference),
           "finite coordinates [m]");
   require(std::isfinite(flat_angle) && flat_angle >= 0.0 && flat_angle < 0.5 * std::numbers::pi,
           object, "flat_angle", flat_angle, "[0, pi/2) rad");
-  auto point_text = [&](const Vec3& p) {
-    return "(" + to_text(p.x()) + ", " + to_text(p.y()) + ", " + to_text(p.z()) + ")";
-  };
   for (std::size_t i = 0; i < nv; ++i)
-    require(all_finite(X[i]), object, ("vertex " + std::to_string(i)).c_str(), point_text(X[i]),
-            "finite coordinates [m]");
+    require(all_finite(X[i]), object, ("vertex " + std::to_string(i)).c_str(),
+            detail::mesh_point_text(X[i]), "finite coordinates [m]");
   for (std::size_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
       require(T[f][k] < nv, object,
               ("triangle " + std::to_string(f) + " vertex index " + std::to_string(k)).c_str(),
               T[f][k], "[0, " + std::to_string(nv) + ") (the mesh's vertices)");
+}
 
-  auto out = std::make_shared<MeshFeatures>();
-  MeshFeatures& m = *out;
-  m.flat_angle_ = flat_angle;
-  m.vertices_.resize(nv);
+inline void MeshFeatures::place_vertices(const std::vector<Vec3>& X, const Vec3& reference) {
+  const std::size_t nv = X.size();
+  vertices_.resize(nv);
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t i = 0; i < nv; ++i) {
-    m.vertices_[i].p = X[i] - reference;
+    vertices_[i].p = X[i] - reference;
     lo = lo.cwiseMin(X[i]);
     hi = hi.cwiseMax(X[i]);
   }
-  // faces: normals and inward edge normals; a degenerate triangle is an error
-  m.faces_.resize(nf);
+  tol_ = 1e-12 * std::max((hi - lo).norm(), std::numeric_limits<double>::min());
+}
+
+inline void MeshFeatures::build_faces(const TriangleMesh& mesh, const std::string& object) {
+  using grain::detail::require;
+  using grain::detail::to_text;
+  const auto& X = mesh.vertices;
+  const auto& T = mesh.triangles;
+  const std::size_t nf = T.size();
+  faces_.resize(nf);
   for (std::size_t f = 0; f < nf; ++f) {
-    Face& F = m.faces_[f];
+    Face& F = faces_[f];
     F.v = T[f];
     require(F.v[0] != F.v[1] && F.v[1] != F.v[2] && F.v[2] != F.v[0], object,
             ("triangle " + std::to_string(f) + " vertex indices").c_str(),
@@ -374,28 +429,29 @@ inline std::shared_ptr<const MeshFeatures> MeshFeatures::build(const TriangleMes
             0.5 * n.norm(),
             "(" + to_text(0.5e-10 * longest) +
                 ", inf) m^2 (above 1e-10 times half its longest edge squared: corners " +
-                point_text(a) + ", " + point_text(b) + ", " + point_text(c) + " are collinear)");
-    const auto& P = m.vertices_;
+                detail::mesh_point_text(a) + ", " + detail::mesh_point_text(b) + ", " +
+                detail::mesh_point_text(c) + " are collinear)");
+    const auto& P = vertices_;
     F.normal = (P[F.v[1]].p - P[F.v[0]].p).cross(P[F.v[2]].p - P[F.v[0]].p).normalized();
     for (int k = 0; k < 3; ++k) {
       const Vec3 t = P[F.v[(k + 1) % 3]].p - P[F.v[k]].p;
       F.inward[k] = F.normal.cross(t).normalized();
     }
   }
-  m.tol_ = 1e-12 * std::max((hi - lo).norm(), std::numeric_limits<double>::min());
-  const double sin_flat = std::max(std::sin(flat_angle), 1e-12);
-  const double chord_flat = std::max(2.0 * std::sin(0.5 * flat_angle), 1e-12);
+}
 
-  // edges: sort the face edges by their vertex pair
+inline void MeshFeatures::build_edges(double chord_flat) {
+  // sort the face edges by their vertex pair
   struct Record {
     std::uint32_t lo, hi, face;
     std::uint8_t k;
   };
+  const std::size_t nf = faces_.size();
   std::vector<Record> rec;
   rec.reserve(3 * nf);
   for (std::uint32_t f = 0; f < nf; ++f)
     for (std::uint8_t k = 0; k < 3; ++k) {
-      const auto a = m.faces_[f].v[k], b = m.faces_[f].v[(k + 1) % 3];
+      const auto a = faces_[f].v[k], b = faces_[f].v[(k + 1) % 3];
       rec.push_back({std::min(a, b), std::max(a, b), f, k});
     }
   std::sort(rec.begin(), rec.end(), [](const Record& x, const Record& y) {
@@ -407,140 +463,149 @@ inline std::shared_ptr<const MeshFeatures> MeshFeatures::build(const TriangleMes
       ++s;
     Edge E;
     E.v = {rec[r].lo, rec[r].hi};
-    E.t = (m.vertices_[E.v[1]].p - m.vertices_[E.v[0]].p).normalized();
+    E.t = (vertices_[E.v[1]].p - vertices_[E.v[0]].p).normalized();
     E.end_dir = {E.t, Vec3(-E.t)};
     E.end_closed = {false, false};
     E.owner = rec[r].face;
-    E.faces_begin = static_cast<std::uint32_t>(m.edge_faces_.size());
-    const auto e = static_cast<std::uint32_t>(m.edges_.size());
+    E.faces_begin = static_cast<std::uint32_t>(edge_faces_.size());
+    const auto e = static_cast<std::uint32_t>(edges_.size());
     for (std::size_t q = r; q < s; ++q) {
-      m.edge_faces_.push_back({rec[q].face, rec[q].k});
-      m.faces_[rec[q].face].e[rec[q].k] = e;
+      edge_faces_.push_back({rec[q].face, rec[q].k});
+      faces_[rec[q].face].e[rec[q].k] = e;
     }
-    E.faces_end = static_cast<std::uint32_t>(m.edge_faces_.size());
+    E.faces_end = static_cast<std::uint32_t>(edge_faces_.size());
     const std::size_t count = s - r;
     if (count == 1) {
       E.kind = EdgeKind::boundary;
     } else if (count == 2) {
-      const Face &F = m.faces_[rec[r].face], &G = m.faces_[rec[r + 1].face];
+      const Face &F = faces_[rec[r].face], &G = faces_[rec[r + 1].face];
       const bool flat = (F.inward[rec[r].k] + G.inward[rec[r + 1].k]).norm() <= chord_flat;
       E.kind = flat ? EdgeKind::flat : EdgeKind::fold;
     } else {
       E.kind = EdgeKind::nonmanifold;
     }
-    m.faces_[E.owner].owned_edges |= static_cast<std::uint8_t>(1u << rec[r].k);
-    m.edges_.push_back(E);
+    faces_[E.owner].owned_edges |= static_cast<std::uint8_t>(1u << rec[r].k);
+    edges_.push_back(E);
     r = s;
   }
+}
 
-  // vertices: incident edges (with the end that is the vertex) and faces, owners
-  {
-    std::vector<std::uint32_t> ecount(nv, 0), fcount(nv, 0);
-    for (const auto& E : m.edges_) {
-      ++ecount[E.v[0]];
-      ++ecount[E.v[1]];
-    }
-    for (const auto& F : m.faces_)
-      for (auto v : F.v)
-        ++fcount[v];
-    std::uint32_t eo = 0, fo = 0;
-    for (std::size_t i = 0; i < nv; ++i) {
-      m.vertices_[i].edges_begin = m.vertices_[i].edges_end = eo;
-      m.vertices_[i].faces_begin = m.vertices_[i].faces_end = fo;
-      eo += ecount[i];
-      fo += fcount[i];
-    }
-    m.vertex_edges_.resize(eo);
-    m.vertex_faces_.resize(fo);
-    for (std::uint32_t e = 0; e < m.edges_.size(); ++e)
-      for (std::uint8_t j = 0; j < 2; ++j) {
-        Vertex& V = m.vertices_[m.edges_[e].v[j]];
-        m.vertex_edges_[V.edges_end++] = {e, j};
-      }
-    for (std::uint32_t f = 0; f < nf; ++f)
-      for (auto v : m.faces_[f].v) {
-        Vertex& V = m.vertices_[v];
-        m.vertex_faces_[V.faces_end++] = f; // ascending: faces are visited in order
-      }
+inline void MeshFeatures::build_vertex_incidence() {
+  const std::size_t nv = vertices_.size();
+  std::vector<std::uint32_t> ecount(nv, 0), fcount(nv, 0);
+  for (const auto& E : edges_) {
+    ++ecount[E.v[0]];
+    ++ecount[E.v[1]];
   }
+  for (const auto& F : faces_)
+    for (auto v : F.v)
+      ++fcount[v];
+  std::uint32_t eo = 0, fo = 0;
+  for (std::size_t i = 0; i < nv; ++i) {
+    vertices_[i].edges_begin = vertices_[i].edges_end = eo;
+    vertices_[i].faces_begin = vertices_[i].faces_end = fo;
+    eo += ecount[i];
+    fo += fcount[i];
+  }
+  vertex_edges_.resize(eo);
+  vertex_faces_.resize(fo);
+  for (std::uint32_t e = 0; e < edges_.size(); ++e)
+    for (std::uint8_t j = 0; j < 2; ++j) {
+      Vertex& V = vertices_[edges_[e].v[j]];
+      vertex_edges_[V.edges_end++] = {e, j};
+    }
+  for (std::uint32_t f = 0; f < faces_.size(); ++f)
+    for (auto v : faces_[f].v) {
+      Vertex& V = vertices_[v];
+      vertex_faces_[V.faces_end++] = f; // ascending: faces are visited in order
+    }
+}
+
+inline void MeshFeatures::build_vertex_cones(double chord_flat) {
   std::vector<Vec3> dirs;
-  for (std::uint32_t i = 0; i < nv; ++i) {
-    Vertex& V = m.vertices_[i];
+  for (std::uint32_t i = 0; i < vertices_.size(); ++i) {
+    Vertex& V = vertices_[i];
     if (V.faces_begin == V.faces_end) continue; // unused vertex
-    V.owner = m.vertex_faces_[V.faces_begin];
+    V.owner = vertex_faces_[V.faces_begin];
     dirs.clear();
     for (auto k = V.edges_begin; k < V.edges_end; ++k) {
-      const auto [e, j] = m.vertex_edges_[k];
-      dirs.push_back(j == 0 ? m.edges_[e].t : Vec3(-m.edges_[e].t));
+      const auto [e, j] = vertex_edges_[k];
+      dirs.push_back(j == 0 ? edges_[e].t : Vec3(-edges_[e].t));
     }
     V.margin = cone_margin(dirs);
-    // edges that go on in a straight line through the vertex share one end plane: the lower
-    // edge takes the points on it (>= 0), the other the rest (> 0 of the opposite direction)
-    std::vector<bool> paired(dirs.size(), false);
-    for (std::size_t a = 0; a < dirs.size(); ++a) {
-      if (paired[a]) continue;
-      for (std::size_t b = a + 1; b < dirs.size(); ++b) {
-        if (paired[b] || (dirs[a] + dirs[b]).norm() > chord_flat) continue;
-        const auto [ea, ja] = m.vertex_edges_[V.edges_begin + a];
-        const auto [eb, jb] = m.vertex_edges_[V.edges_begin + b];
-        const auto first = std::min(ea, eb) == ea ? std::pair{ea, ja} : std::pair{eb, jb};
-        const auto second = std::min(ea, eb) == ea ? std::pair{eb, jb} : std::pair{ea, ja};
-        Edge& A = m.edges_[first.first];
-        Edge& B = m.edges_[second.first];
-        A.end_closed[first.second] = true;
-        B.end_dir[second.second] = -A.end_dir[first.second];
-        B.end_closed[second.second] = false;
-        paired[a] = paired[b] = true;
-        break;
-      }
-    }
+    pair_straight_edges(V, dirs, chord_flat);
     // a vertex whose cone has no interior (margin < 0 beyond round-off) never reports
     if (V.margin >= -1e-9) {
-      Face& F = m.faces_[V.owner];
+      Face& F = faces_[V.owner];
       for (int k = 0; k < 3; ++k)
         if (F.v[k] == i) F.owned_vertices |= static_cast<std::uint8_t>(1u << k);
     }
   }
+}
 
-  // coplanar faces that share a vertex (ascending), and each edge's guards: the faces coplanar
-  // with one of its faces that do not contain it
-  {
-    std::vector<std::uint32_t> near;
-    for (std::uint32_t f = 0; f < nf; ++f) {
-      Face& F = m.faces_[f];
-      near.clear();
-      for (auto v : F.v) {
-        const Vertex& V = m.vertices_[v];
-        for (auto k = V.faces_begin; k < V.faces_end; ++k) {
-          const auto g = m.vertex_faces_[k];
-          if (g != f && F.normal.cross(m.faces_[g].normal).norm() <= sin_flat) near.push_back(g);
-        }
-      }
-      std::sort(near.begin(), near.end());
-      near.erase(std::unique(near.begin(), near.end()), near.end());
-      F.flat_begin = static_cast<std::uint32_t>(m.flat_.size());
-      m.flat_.insert(m.flat_.end(), near.begin(), near.end());
-      F.flat_end = static_cast<std::uint32_t>(m.flat_.size());
-    }
-    for (auto& E : m.edges_) {
-      near.clear();
-      for (auto k = E.faces_begin; k < E.faces_end; ++k) {
-        const Face& F = m.faces_[m.edge_faces_[k].first];
-        near.insert(near.end(), m.flat_.begin() + F.flat_begin, m.flat_.begin() + F.flat_end);
-      }
-      std::sort(near.begin(), near.end());
-      near.erase(std::unique(near.begin(), near.end()), near.end());
-      E.guards_begin = static_cast<std::uint32_t>(m.guards_.size());
-      for (auto g : near) {
-        bool of_edge = false;
-        for (auto k = E.faces_begin; k < E.faces_end; ++k)
-          of_edge |= m.edge_faces_[k].first == g;
-        if (!of_edge) m.guards_.push_back(g);
-      }
-      E.guards_end = static_cast<std::uint32_t>(m.guards_.size());
+inline void MeshFeatures::pair_straight_edges(const Vertex& V, const std::vector<Vec3>& dirs,
+                                              double chord_flat) {
+  // edges that go on in a straight line through the vertex share one end plane: the lower
+  // edge takes the points on it (>= 0), the other the rest (> 0 of the opposite direction)
+  std::vector<bool> paired(dirs.size(), false);
+  for (std::size_t a = 0; a < dirs.size(); ++a) {
+    if (paired[a]) continue;
+    for (std::size_t b = a + 1; b < dirs.size(); ++b) {
+      if (paired[b] || (dirs[a] + dirs[b]).norm() > chord_flat) continue;
+      const auto [ea, ja] = vertex_edges_[V.edges_begin + a];
+      const auto [eb, jb] = vertex_edges_[V.edges_begin + b];
+      const auto first = std::min(ea, eb) == ea ? std::pair{ea, ja} : std::pair{eb, jb};
+      const auto second = std::min(ea, eb) == ea ? std::pair{eb, jb} : std::pair{ea, ja};
+      Edge& A = edges_[first.first];
+      Edge& B = edges_[second.first];
+      A.end_closed[first.second] = true;
+      B.end_dir[second.second] = -A.end_dir[first.second];
+      B.end_closed[second.second] = false;
+      paired[a] = paired[b] = true;
+      break;
     }
   }
-  return out;
+}
+
+inline void MeshFeatures::build_flat_neighbours(double sin_flat) {
+  std::vector<std::uint32_t> near;
+  for (std::uint32_t f = 0; f < faces_.size(); ++f) {
+    Face& F = faces_[f];
+    near.clear();
+    for (auto v : F.v) {
+      const Vertex& V = vertices_[v];
+      for (auto k = V.faces_begin; k < V.faces_end; ++k) {
+        const auto g = vertex_faces_[k];
+        if (g != f && F.normal.cross(faces_[g].normal).norm() <= sin_flat) near.push_back(g);
+      }
+    }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    F.flat_begin = static_cast<std::uint32_t>(flat_.size());
+    flat_.insert(flat_.end(), near.begin(), near.end());
+    F.flat_end = static_cast<std::uint32_t>(flat_.size());
+  }
+}
+
+inline void MeshFeatures::build_edge_guards() {
+  std::vector<std::uint32_t> near;
+  for (auto& E : edges_) {
+    near.clear();
+    for (auto k = E.faces_begin; k < E.faces_end; ++k) {
+      const Face& F = faces_[edge_faces_[k].first];
+      near.insert(near.end(), flat_.begin() + F.flat_begin, flat_.begin() + F.flat_end);
+    }
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+    E.guards_begin = static_cast<std::uint32_t>(guards_.size());
+    for (auto g : near) {
+      bool of_edge = false;
+      for (auto k = E.faces_begin; k < E.faces_end; ++k)
+        of_edge |= edge_faces_[k].first == g;
+      if (!of_edge) guards_.push_back(g);
+    }
+    E.guards_end = static_cast<std::uint32_t>(guards_.size());
+  }
 }
 
 } // namespace grain::walls
