@@ -59,10 +59,12 @@
 #include <grain/simulation/heat.hpp>
 #include <grain/simulation/integration.hpp>
 #include <grain/simulation/lifecycle.hpp>
+#include <grain/simulation/observables.hpp>
 #include <grain/simulation/pair_table.hpp>
 #include <grain/simulation/parallel.hpp>
 #include <grain/simulation/params.hpp>
 #include <grain/simulation/rebuild.hpp>
+#include <grain/simulation/setup_api.hpp>
 #include <grain/simulation/stage_hooks.hpp>
 #include <grain/simulation/time_step.hpp>
 #include <grain/simulation/variable_properties.hpp>
@@ -96,8 +98,12 @@
 namespace grain {
 template <class Shape, class SearchT, class Contact, class... Options>
 class Simulation
-    : public detail::GroupsAndConditions<Simulation<Shape, SearchT, Contact, Options...>,
-                                         detail::dimension_of<Shape>> {
+    : public detail::SetUp<Simulation<Shape, SearchT, Contact, Options...>,
+                           detail::dimension_of<Shape>, Contact>,
+      public detail::GroupsAndConditions<Simulation<Shape, SearchT, Contact, Options...>,
+                                         detail::dimension_of<Shape>>,
+      public detail::Observables<Simulation<Shape, SearchT, Contact, Options...>,
+                                 detail::dimension_of<Shape>, Contact> {
   static_assert((detail::is_option<Options>::value && ...),
                 "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
                 "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
@@ -208,141 +214,6 @@ public:
     }
   }
 
-  // ---------------------------------------------------------------- set-up
-  /// Adds a material; returns its index.
-  std::uint32_t add_material(const Material& m) {
-    const auto k = table_.add_material(m);
-    initialized_ = false;
-    return k;
-  }
-  /// Overrides mixed restitution / friction for one pair of materials.
-  void set_pair(std::uint32_t a, std::uint32_t b, const PairOverride& o) {
-    table_.check_material(a, "set_pair");
-    table_.check_material(b, "set_pair");
-    table_.set_override(a, b, o, "Simulation::set_pair");
-    initialized_ = false;
-  }
-
-  /// Contact-model parameters for one pair of materials (either order), replacing
-  /// SimulationParams::contact (the default pair) for the contacts of these materials, particle-
-  /// particle and particle-wall: the table of contact parameters per pair of surface colours of
-  /// the third seed's GRANULAR command, for any contact model. Throws InputError naming the pair
-  /// for invalid parameters or materials.
-  void set_pair_parameters(std::uint32_t a, std::uint32_t b, const typename Contact::Params& p) {
-    table_.check_material(a, "set_pair_parameters");
-    table_.check_material(b, "set_pair_parameters");
-    table_.set_parameters(a, b, p, "Simulation::set_pair_parameters");
-    initialized_ = false;
-  }
-  /// The contact-model parameters of a pair of materials (SimulationParams::contact unless
-  /// set_pair_parameters gave the pair its own).
-  const typename Contact::Params& contact_params(std::size_t a, std::size_t b) const {
-    return table_.parameters(a, b);
-  }
-  /// The materials and the properties and contact parameters of their pairs.
-  const PairTable<Contact>& pair_table() const { return table_; }
-
-  /// Adds a particle; returns its id. Throws InputError on bad input. A particle with a creation
-  /// time later than the current time waits, inactive, until then.
-  std::int64_t add_particle(const ParticleSpec<D>& spec) { return Life::add_particle(*this, spec); }
-
-  /// Removes the particle with this id (active or not yet created) with its contacts, now:
-  /// between runs, or before the first. Its id is not used again (removed_ids). Throws
-  /// InputError for an id that is not a particle of the simulation.
-  void remove_particle(std::int64_t id) { Life::remove_particle(*this, id); }
-
-  /// Adds a wall; returns its index. Throws InputError on bad geometry.
-  template <class G>
-  std::uint32_t add_wall(const G& geometry, WallOptions<D> options = {}) {
-    static_assert(std::is_constructible_v<WallGeometry<D>, G>,
-                  "grain::Simulation::add_wall: this wall type does not exist in this dimension "
-                  "(2D: walls::Segment, walls::Circle; 3D: walls::Plane, walls::Triangle)");
-    Wall<D> w;
-    w.geometry = geometry;
-    w.options = options;
-    w.validate();
-    table_.check_material(options.material, "Wall '" + options.name + "'");
-    w.pivot = options.has_pivot ? options.pivot : Wall<D>::default_pivot(w.geometry);
-    w.take_snapshot();
-    walls_.push_back(w);
-    initialized_ = false;
-    return static_cast<std::uint32_t>(walls_.size() - 1);
-  }
-
-  /// Constant gravity [m/s^2].
-  void set_gravity(const V& g) {
-    for (int d = 0; d < D; ++d)
-      detail::require_finite("Simulation", "gravity component", g[d]);
-    params_.gravity = g;
-    gravity_fn_.reset();
-    gravity_now_ = g;
-    ++gravity_revision_;
-  }
-  /// Gravity that changes in time [m/s^2] (each component a TimeFunction; 0 while inactive).
-  void set_gravity(const VectorTimeFunction<D>& g) {
-    gravity_fn_ = g;
-    gravity_now_ = g(time_);
-    ++gravity_revision_;
-  }
-  /// Gravity acting at the last force evaluation (or the constant gravity) [m/s^2].
-  V gravity() const { return gravity_fn_ ? gravity_now_ : params_.gravity; }
-  /// Gravity as a function of time [m/s^2] (a constant function for constant gravity).
-  VectorTimeFunction<D> gravity_function() const {
-    return gravity_fn_ ? *gravity_fn_ : VectorTimeFunction<D>(params_.gravity);
-  }
-  /// Counts the calls of set_gravity (stages that keep a copy of gravity compare it).
-  std::uint64_t gravity_revision() const noexcept { return gravity_revision_; }
-
-  /// Global damping that changes in time: force -c_t(t) v [c_t in N s/m] and torque -c_r(t) omega
-  /// [c_r in N m s], replacing SimulationParams::damping_translational / damping_rotational.
-  void set_damping(TimeFunction translational, TimeFunction rotational = {}) {
-    detail::require_non_negative("Simulation::set_damping", "translational", translational, time_);
-    detail::require_non_negative("Simulation::set_damping", "rotational", rotational, time_);
-    damping_fn_ = std::make_pair(std::move(translational), std::move(rotational));
-  }
-  /// Mass-proportional damping per component (the third seed's DAMPING): force -m (d (.) v) and
-  /// torque -I (d_w (.) omega), (.) the componentwise product; d, d_w in 1/s, time functions.
-  void set_mass_damping(VectorTimeFunction<D> linear, AngularTimeFunction<D> angular = {}) {
-    for (int d = 0; d < D; ++d)
-      detail::require(linear.value(time_)[d] >= 0, "Simulation::set_mass_damping",
-                      "linear component", linear.value(time_)[d], "[0, inf) 1/s");
-    if constexpr (D == 2)
-      detail::require(angular.value(time_) >= 0, "Simulation::set_mass_damping", "angular",
-                      angular.value(time_), "[0, inf) 1/s");
-    else
-      for (int d = 0; d < 3; ++d)
-        detail::require(angular.value(time_)[d] >= 0, "Simulation::set_mass_damping",
-                        "angular component", angular.value(time_)[d], "[0, inf) 1/s");
-    mass_damping_ = std::make_pair(std::move(linear), std::move(angular));
-  }
-
-  // ---------------------------------------------------------------- lifecycle
-  /// Particles whose centre leaves this region are removed (with their contacts), while
-  /// t_begin <= t <= t_end [s].
-  void set_bounding_box(const Region<D>& region,
-                        double t_begin = -std::numeric_limits<double>::infinity(),
-                        double t_end = std::numeric_limits<double>::infinity()) {
-    TimedRegion<D> r{region, t_begin, t_end};
-    r.validate("Simulation::set_bounding_box");
-    life_.bounding_box = r;
-  }
-  /// Particles whose centre enters this region are removed, while t_begin <= t <= t_end [s].
-  void add_sink(const Region<D>& region, double t_begin = -std::numeric_limits<double>::infinity(),
-                double t_end = std::numeric_limits<double>::infinity()) {
-    TimedRegion<D> r{region, t_begin, t_end};
-    r.validate("Simulation::add_sink " + std::to_string(life_.sinks.size()));
-    life_.sinks.push_back(r);
-  }
-  /// Ids of the particles removed so far (bounding box, sinks, destruction time), in order.
-  const std::vector<std::int64_t>& removed_ids() const { return life_.removed_ids; }
-  /// Particles added with a creation time still in the future.
-  std::size_t inactive_count() const { return life_.pending.size(); }
-  /// True if a particle with this id is active (present in the arrays).
-  bool is_active(std::int64_t id) const {
-    return std::find(particles_.id.begin(), particles_.id.end(), id) != particles_.id.end() &&
-           !life_.removal_requested(id);
-  }
-
   // ---------------------------------------------------------------- time step
   /// Rayleigh time pi R sqrt(rho/G)/(0.1631 nu + 0.8766) of the smallest particle [s].
   double rayleigh_time() const { return Limits::rayleigh_time(*this); }
@@ -426,7 +297,8 @@ public:
     if constexpr (thermal) {
       if (analysis() == Analysis::thermal) Heat::store_conductances(*this);
     }
-    if (params_.track_dissipation && std::isnan(elastic_start_)) elastic_start_ = elastic_energy();
+    if (params_.track_dissipation && std::isnan(elastic_start_))
+      elastic_start_ = this->elastic_energy();
     if (moves()) {
       if constexpr (IntegratorT::drift_before_forces) {
         // forces at the initial positions; histories are not advanced by this evaluation (only
@@ -690,174 +562,6 @@ public:
     return std::get<std::vector<F>>(fields_);
   }
 
-  // ---------------------------------------------------------------- wall loads
-  /// Force the particles exert on wall w at the last force evaluation [N] (the sum of the
-  /// reactions of its contacts, in list order: the same bits for any thread count). Zero before
-  /// the first step and after loading a checkpoint, until the next step.
-  V wall_force(std::size_t w) const {
-    check_wall(w, "wall_force");
-    collect_wall_loads();
-    return wall_loads_.force(w);
-  }
-  /// Torque the particles exert on wall w about its pivot at the last force evaluation [N m]
-  /// (forces at the contact points plus the couples of rolling resistance).
-  A wall_torque(std::size_t w) const {
-    check_wall(w, "wall_torque");
-    collect_wall_loads();
-    return wall_loads_.torque(w);
-  }
-  /// Visits every touching particle-wall contact of the last force evaluation with the forces
-  /// that were applied: f(particle id, wall index, point [m], force on the wall [N]); used to
-  /// spread the load of a wall over its nodes.
-  template <class F>
-  void for_each_wall_load(F&& f) const {
-    collect_wall_loads();
-    for (const auto& c : wall_loads_.contacts())
-      f(c.id, static_cast<std::size_t>(c.wall), c.point, c.force);
-  }
-  std::size_t size() const { return particles_.size(); }
-
-  /// True if a prescribed motion (fix_velocity, fix_omega, prescribe_motion) or a restraint
-  /// covers the particle with this id.
-  bool motion_controlled(std::int64_t id) const {
-    ensure_groups();
-    for (const auto& c : cond_.controls)
-      if (c.id == id) return true;
-    return false;
-  }
-  /// Current index of the particle with this id (particles are re-sorted by the cell list).
-  std::size_t index_of(std::int64_t id) const {
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      if (particles_.id[i] == id) return i;
-    throw InputError("Simulation::index_of: id = " + std::to_string(id) +
-                     " is invalid; valid range: ids of existing particles");
-  }
-
-  /// Effective properties of two materials.
-  const PairProperties& pair_properties(std::size_t a, std::size_t b) const {
-    return table_.properties(a, b);
-  }
-  /// The material of particle i (current index) with its variable properties applied.
-  Material material_of(std::size_t i) const {
-    return vprops_.material_of(i, table_.material(particles_.material[i]));
-  }
-  /// Effective properties of the contact of particle i with particle j (wall = false) or with
-  /// wall j (wall = true), with variable properties applied.
-  PairProperties contact_pair(std::size_t i, std::size_t j, bool wall) const {
-    const auto mi = particles_.material[i];
-    const auto mj = wall ? walls_[j].options.material : particles_.material[j];
-    const auto k = table_.index(mi, mj);
-    if (!vprops_.per_particle) return table_.properties(k);
-    return table_.mix_of(material_of(i), wall ? table_.material(mj) : material_of(j), k);
-  }
-
-  /// Adds a property that follows a table of temperature, time or speed for the particles of a
-  /// group (see conditions/variable_property.hpp); applied at initialisation and every
-  /// `every` steps while active.
-  void add_variable_property(VariableProperty vp) {
-    vp.validate();
-    const auto g = cond_.find(vp.group);
-    if (vp.variable == Variable::temperature && !thermal)
-      throw InputError(std::string("VariableProperty (") + property_name(vp.property) +
-                       "): variable = temperature is invalid without a thermal state; valid: "
-                       "time or speed (or give the Interaction a conduction model)");
-    if constexpr (!thermal)
-      if (vp.property == Property::heat_capacity || vp.property == Property::conductivity)
-        throw InputError(std::string("VariableProperty: property = ") + property_name(vp.property) +
-                         " is invalid without a thermal state; valid: mechanical properties");
-    if (vprops_.add(std::move(vp), g, particles_.size())) table_.set_per_particle(true);
-    // the contact pass and the visits of contacts read per-entry properties from now on
-    if (vprops_.per_particle && Diag::listed_rows(*this) == particles_.size())
-      Neighbours::refresh_pair_cache(*this);
-    initialized_ = false;
-  }
-
-  /// The view of one contact that for_each_contact passes to a one-argument callable.
-  using ContactViewType = ContactView<D, typename Contact::template Result<D>, History>;
-
-  /// Visits every touching contact: f(i, j_or_wall, is_wall, geometry, result), or, if f takes a
-  /// sixth argument, also the heat rate into particle i through the contact [W] (0 without heat
-  /// conduction or across an insulated wall), or, if f takes one argument, a `ContactView`
-  /// (partners, geometry, result, model data, heat rate and the local frame; see
-  /// contact/frame.hpp). The contact models are evaluated on copies of the histories, so the
-  /// state is not changed.
-  template <class F>
-  void for_each_contact(F&& f) const {
-    Diag::for_each_contact(*this, f);
-  }
-
-  /// Visits the conductance of every conducting pair of the current list without changing any
-  /// state: f(i, j_or_wall, is_wall, H).
-  /// In a thermal analysis the contacts are at rest (particles never move, whatever velocities
-  /// they were given).
-  template <class F>
-  void for_each_conductance(F&& f) const {
-    Diag::for_each_conductance(*this, f);
-  }
-
-  /// Number of touching particle-particle and particle-wall contacts.
-  std::pair<std::size_t, std::size_t> contact_counts() const { return Diag::contact_counts(*this); }
-
-  /// Translational + rotational kinetic energy [J].
-  double kinetic_energy() const {
-    double e = 0.0;
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      e += 0.5 * particles_.mass[i] * particles_.velocity[i].squaredNorm() +
-           0.5 * particles_.inertia[i] * squared_norm(particles_.omega[i]);
-    return e;
-  }
-  /// Elastic energy stored in all contacts [J].
-  double elastic_energy() const {
-    double e = 0.0;
-    for_each_contact([&](auto, auto, bool, const auto&, const auto& r) {
-      e += r.normal.elastic_energy + r.tangent.elastic_energy;
-    });
-    return e;
-  }
-  /// Energy dissipated since the start [J] (NaN unless SimulationParams::track_dissipation):
-  /// the work the contacts and the global damping took from the bodies minus the growth of the
-  /// elastic energy stored in the contacts. It covers every dissipative part of the contact
-  /// laws (viscous damping, friction, plastic hysteresis, rolling resistance) and the energy a
-  /// tangential spring holds when its contact opens. The work is summed with the velocities the
-  /// forces see (second order with velocity Verlet).
-  double dissipated_energy() const {
-    if (!params_.track_dissipation) return std::numeric_limits<double>::quiet_NaN();
-    const double start = std::isnan(elastic_start_) ? 0.0 : elastic_start_;
-    return -work_in_ - (elastic_energy() - start);
-  }
-  /// Gravitational potential energy relative to the origin [J].
-  /// With gravity that changes in time (set_gravity with a function), the potential of the
-  /// current gravity.
-  double potential_energy() const {
-    double e = 0.0;
-    const V g = gravity();
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      e -= particles_.mass[i] * g.dot(particles_.position[i]);
-    return e;
-  }
-
-  /// Heat content sum C_i T_i of the particles [J] (0 without a thermal state); constant in an
-  /// insulated system.
-  double thermal_energy() const {
-    double e = 0.0;
-    if constexpr (thermal)
-      for (std::size_t i = 0; i < particles_.size(); ++i)
-        e += particles_.heat_capacity[i] * particles_.temperature[i];
-    return e;
-  }
-  /// Mean particle temperature [K] (NaN without particles or thermal state).
-  double mean_temperature() const {
-    double t = 0.0;
-    if constexpr (thermal) {
-      if (particles_.size() == 0) return std::numeric_limits<double>::quiet_NaN();
-      for (double x : particles_.temperature)
-        t += x;
-      return t / static_cast<double>(particles_.size());
-    } else {
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-  }
-
 private:
   /// Largest gap across which heat flows over all pairs of materials [m].
   double largest_cutoff() const {
@@ -873,7 +577,7 @@ private:
     return s;
   }
   bool has_particle(std::int64_t id) const {
-    if (is_active(id)) return true;
+    if (this->is_active(id)) return true;
     for (const auto& s : life_.pending)
       if (s.id == id) return true;
     return false;
@@ -982,7 +686,7 @@ private:
         throw InputError("Simulation::set_damping: damping = " + detail::to_text(std::min(ct, cr)) +
                          " at t = " + detail::to_text(t) + " s is invalid; valid range: [0, inf)");
     }
-    return {gravity(), ct, cr};
+    return {this->gravity(), ct, cr};
   }
 
   /// Surface of a particle of radius r [m^2] (a 2D disk: its lateral surface, perimeter times
@@ -1069,7 +773,9 @@ private:
   friend Diag;
   friend Limits;
   friend VPStep;
+  friend detail::SetUp<Simulation, D, Contact>;
   friend detail::GroupsAndConditions<Simulation, D>;
+  friend detail::Observables<Simulation, D, Contact>;
 
   StageTuple stages_{};
   typename FieldStore::type fields_{};

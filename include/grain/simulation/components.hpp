@@ -15,8 +15,12 @@
 /// | `TimeStepLimits<Sim>` | time_step.hpp      | the stable limits and the step of a run         |
 /// | `VariablePropertyStep<Sim>` | variable_properties.hpp | properties that follow tables, applied |
 ///
-/// The public API of groups and conditions is a base of `Simulation`,
-/// `GroupsAndConditions<Sim, D>` (conditions_api.hpp), which knows its derived class.
+/// The public API is declared in `Simulation` (the run: initialize, step, steps, run, the
+/// checkpoint, the time step) and in three bases that know their derived class: `SetUp<Sim, D,
+/// Contact>` (setup_api.hpp: materials, particles, walls, gravity, damping, bounding box and
+/// sinks), `GroupsAndConditions<Sim, D>` (conditions_api.hpp: groups, conditions, variable
+/// properties) and `Observables<Sim, D, Contact>` (observables.hpp: wall loads, contact visits,
+/// properties, energies).
 ///
 /// The components that own data and need no simulation (tested on their own) are the contact
 /// history store (contact/history.hpp), the pair table (pair_table.hpp), the lifecycle decision
@@ -41,7 +45,11 @@ template <class Sim>
 struct TimeStepLimits;
 template <class Sim>
 struct VariablePropertyStep;
+template <class Sim, int D, class Contact>
+class SetUp;
 template <class Sim, int D>
 class GroupsAndConditions;
+template <class Sim, int D, class Contact>
+class Observables;
 
 } // namespace grain::detail

@@ -10,6 +10,7 @@
 /// class: no virtual function), so these are members of every simulation.
 
 #include <grain/conditions/conditions.hpp>
+#include <grain/conditions/variable_property.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
@@ -236,6 +237,28 @@ public:
     // between runs: the loads of the last evaluation, which the next first half kick uses, too
     s.cond_.restrain_loads(s.particles_);
     s.cond_.restrain_velocities(s.particles_);
+  }
+
+  /// Adds a property that follows a table of temperature, time or speed for the particles of a
+  /// group (see conditions/variable_property.hpp); applied at initialisation and every
+  /// `every` steps while active.
+  void add_variable_property(VariableProperty vp) {
+    Sim& s = self();
+    vp.validate();
+    const auto g = s.cond_.find(vp.group);
+    if (vp.variable == Variable::temperature && !Sim::thermal)
+      throw InputError(std::string("VariableProperty (") + property_name(vp.property) +
+                       "): variable = temperature is invalid without a thermal state; valid: "
+                       "time or speed (or give the Interaction a conduction model)");
+    if constexpr (!Sim::thermal)
+      if (vp.property == Property::heat_capacity || vp.property == Property::conductivity)
+        throw InputError(std::string("VariableProperty: property = ") + property_name(vp.property) +
+                         " is invalid without a thermal state; valid: mechanical properties");
+    if (s.vprops_.add(std::move(vp), g, s.particles_.size())) s.table_.set_per_particle(true);
+    // the contact pass and the visits of contacts read per-entry properties from now on
+    if (s.vprops_.per_particle && Diagnostics<Sim>::listed_rows(s) == s.particles_.size())
+      NeighbourRebuild<Sim>::refresh_pair_cache(s);
+    s.initialized_ = false;
   }
 };
 
