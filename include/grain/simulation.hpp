@@ -442,6 +442,7 @@ public:
   /// Runs n steps, calling each observer after every step (see io::every).
   template <class... Observers>
   void steps(long n, Observers&&... obs) {
+    require(n >= 0, "Simulation::steps", "n", n, "[0, inf)");
     if (!initialized_) initialize();
     (detail::start_observer(obs, *this), ...);
     for (long k = 0; k < n; ++k) {

@@ -269,8 +269,7 @@ void save_checkpoint(const Sim& sim, const std::string& path) {
   if (!sim.initialized())
     throw InputError("grain::io::save_checkpoint: simulation = not initialised is invalid; valid: "
                      "a simulation after initialize() or a run");
-  const std::filesystem::path p(path);
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  detail::require_output_folder("grain::io::save_checkpoint", path);
   const std::string tmp = path + ".tmp";
   try {
     errno = 0;

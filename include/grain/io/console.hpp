@@ -374,8 +374,7 @@ struct Print {
     std::vector<std::string> names{"time [s]", "step"};
     detail::names_of_all(columns, sim, names);
     if (!path.empty()) {
-      const std::filesystem::path p(path);
-      if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+      detail::require_output_folder("grain::io::print", path);
       std::FILE* f = std::fopen(path.c_str(), "w");
       if (!f) throw std::runtime_error("grain::io::print: cannot open '" + path + "' for writing");
       file_ = std::shared_ptr<std::FILE>(f, [](std::FILE* g) { std::fclose(g); });

@@ -861,8 +861,7 @@ struct CsvWriter {
     for (std::size_t k = 0; k < names.size(); ++k)
       header += (k ? "," : "") + detail::quoted(names[k]);
     header += '\n';
-    const std::filesystem::path p(path);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+    detail::require_output_folder("grain::io::csv", path);
     const std::uintmax_t keep =
         resume ? detail::resumable_bytes(path, header, sim.step_count()) : 0;
     if (keep > 0) std::filesystem::resize_file(path, keep);

@@ -572,6 +572,7 @@ struct VtkWriter {
     detail::resolve_fields<Sim>(options.fields, "grain::io::vtk");
     if (!options.group.empty()) (void)sim.group(options.group);
     if (options.resume && count == 0 && particle_files.empty()) resume(sim);
+    detail::require_output_folder("grain::io::vtk", prefix);
   }
 
   template <class Sim>
