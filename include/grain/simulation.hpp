@@ -66,6 +66,7 @@
 #include <grain/simulation/rebuild.hpp>
 #include <grain/simulation/setup_api.hpp>
 #include <grain/simulation/stage_hooks.hpp>
+#include <grain/simulation/state_check.hpp>
 #include <grain/simulation/time_step.hpp>
 #include <grain/simulation/variable_properties.hpp>
 #include <grain/simulation/wall_loads.hpp>
@@ -190,6 +191,10 @@ public:
     detail::require_in("Simulation", "auto_time_step_factor", params_.auto_time_step_factor, 1e-6,
                        1.0, "(0, 1]");
     detail::require_positive("Simulation", "reference_velocity", params_.reference_velocity);
+    detail::require(params_.max_start_overlap >= 0.0, "Simulation", "max_start_overlap",
+                    params_.max_start_overlap, "[0, inf] (a fraction of the smaller radius)");
+    detail::require(params_.max_step_travel > 0.0, "Simulation", "max_step_travel",
+                    params_.max_step_travel, "(0, inf] (a fraction of the radius)");
     if (params_.analysis == Analysis::thermal || params_.analysis == Analysis::thermo_mechanical)
       if (!thermal)
         throw InputError("Simulation: analysis = thermal or thermo-mechanical needs a contact "
@@ -231,10 +236,12 @@ public:
   double thermal_time_step() const { return Limits::thermal_time_step(*this); }
 
   /// Stability limit of the explicit temperature update over the contacts of the current
-  /// neighbour list (after initialisation; infinite before): min over particles of
-  /// C_i / (sum_j H_ij + h_i S_i / 2) [s], h_i S_i the convective conductance (see
-  /// simulation/time_step.hpp).
+  /// neighbour list (after initialisation; infinite before): 2 / lambda_max [s], lambda_max the
+  /// largest eigenvalue of C^-1 (L + K), estimated from above (see simulation/time_step.hpp).
   double conduction_time_step() const { return Limits::conduction_time_step(*this); }
+  /// A bound below the conduction limit: min over particles of C_i / (sum_j H_ij + K_i) [s],
+  /// K_i the conductance to walls and to the fluid (h_i S_i). A step below it is stable.
+  double conduction_bound() const { return Limits::conduction_bound(*this); }
 
   /// The critical time step [s]: the mechanical one if forces move particles (a moving analysis
   /// with at least one particle that is not fixed, present or to come), and the conduction limit
@@ -290,10 +297,12 @@ public:
     }
     if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
     Neighbours::initial_build(*this);
+    Check::start_overlaps(*this);
     ensure_groups();
     cond_.restrain_velocities(particles_);
     if constexpr (thermal) cond_.fix_temperatures(particles_, time_);
     dt_ = Limits::choose(*this);
+    start_limits_ = Check::limits_text(*this);
     if constexpr (thermal) {
       if (analysis() == Analysis::thermal) Heat::store_conductances(*this);
     }
@@ -323,7 +332,7 @@ public:
 
 private:
   /// Throws InputError if particles or walls have no material, or a particle of a heated
-  /// simulation no heat capacity.
+  /// simulation no heat capacity; warns of particle materials that do not conduct.
   void check_materials() const {
     if (table_.empty() && (particles_.size() > 0 || !walls_.empty()))
       throw InputError("Simulation: no material was added; add_material() first");
@@ -337,6 +346,41 @@ private:
                              " J/(kg K) is invalid for a particle of a thermal simulation; valid "
                              "range: (0, inf) J/(kg K)");
         }
+        check_conductivities();
+      }
+    }
+  }
+  /// In a heated simulation whose contacts conduct directly, a particle material of
+  /// conductivity 0 (the default) makes the contacts of its particles conduct nothing through
+  /// the built-in laws (they insulate): a warning names those materials, once for the same set
+  /// (not an error: a program's own conduction law may not use the conductivity).
+  void check_conductivities() const {
+    if constexpr (thermal && !Contact::indirect) {
+      std::vector<char> used(table_.size(), 0);
+      for (const auto k : particles_.material)
+        used[k] = 1;
+      for (const auto& spec : life_.pending)
+        used[spec.material] = 1;
+      std::string insulating;
+      bool any_conducts = false;
+      for (std::size_t k = 0; k < used.size(); ++k) {
+        if (!used[k]) continue;
+        const Material& m = table_.material(static_cast<std::uint32_t>(k));
+        if (m.conductivity > 0.0)
+          any_conducts = true;
+        else
+          insulating += (insulating.empty() ? "'" : ", '") + m.name + "'";
+      }
+      if (insulating.empty()) return;
+      if (warned_insulating_ != insulating) {
+        warned_insulating_ = insulating;
+        detail::warn("Material " + insulating +
+                     ": conductivity = 0 W/(m K) (the default) in a thermal simulation: " +
+                     (any_conducts ? std::string("its particles conduct no heat through their "
+                                                 "contacts (they insulate)")
+                                   : std::string("no particle conducts heat through its "
+                                                 "contacts")) +
+                     "; give Material::conductivity [W/(m K)] if they should conduct");
       }
     }
   }
@@ -460,7 +504,17 @@ public:
       }
       (obs(*this), ...);
     }
+    if (n > 0) Check::particles(*this); // before the last output
     (detail::finish_observer(obs, *this), ...);
+  }
+
+  /// Throws NumericalError if the state has gone wrong: a quantity that is not finite, a
+  /// particle moving more than its radius per step, the centre of a particle inside another or
+  /// behind a plane wall (simulation/state_check.hpp). The output actions (io::every,
+  /// io::every_steps) call it before they write; `steps` checks the particles at its end.
+  void check_state() const {
+    Check::particles(*this);
+    Check::overlaps(*this);
   }
 
   /// Runs for `duration` seconds of simulated time, rounded up to whole steps (a quotient
@@ -506,6 +560,9 @@ public:
       wall_loads_.clear(list_.walls.size());
       origin_.clear();
       life_.removal_requests.clear(); // the state read is complete
+      fresh_ids_.clear();             // a continued state, not a start
+      checked_walls_ = walls_.size();
+      if (initialized_) start_limits_ = Check::limits_text(*this);
       groups_dirty_ = true;
       if (vprops_.per_particle && initialized_) Neighbours::refresh_pair_cache(*this);
     }
@@ -631,36 +688,11 @@ private:
     return walls_[w].conducts() && table_.material(walls_[w].options.material).conductivity > 0.0;
   }
 
-  /// Throws NumericalError naming the first particle whose position (or temperature) is not
-  /// finite. A displacement that is not finite counts as infinite, so such a particle forces a
-  /// rebuild, which calls this before sorting by cell.
-  void require_finite_state() const {
-    const auto& p = particles_;
-    auto finite = [&](std::size_t i) {
-      if constexpr (thermal)
-        if (!std::isfinite(p.temperature[i])) return false;
-      return p.position[i].allFinite();
-    };
-    const long n = static_cast<long>(p.size());
-    bool all = true;
-#pragma omp parallel for reduction(&& : all) schedule(static) if (n >= parallel_threshold)
-    for (long i = 0; i < n; ++i)
-      all = all && finite(static_cast<std::size_t>(i));
-    if (all) return;
-    std::size_t i = 0;
-    while (finite(i))
-      ++i;
-    std::string what = "position = (" + detail::vector_text(p.position[i]) + ") m";
-    if constexpr (thermal)
-      if (p.position[i].allFinite())
-        what = "temperature = " + detail::to_text(p.temperature[i]) + " K";
-    throw NumericalError("Simulation: particle " + std::to_string(p.id[i]) + " has " + what +
-                         " at t = " + detail::to_text(time_) + " s (step " + std::to_string(step_) +
-                         "); valid range: a finite number. The time step " + detail::to_text(dt_) +
-                         " s may be above the stable limit " +
-                         detail::to_text(critical_time_step()) +
-                         " s, or a load, property or table may not be finite");
-  }
+  /// Throws NumericalError naming the first particle with a quantity that is not finite or a
+  /// speed beyond one radius per step (StateCheck::particles). A displacement that is not finite
+  /// counts as infinite, so such a particle forces a rebuild, which calls this before sorting by
+  /// cell.
+  void require_finite_state() const { Check::particles(*this); }
 
   template <class T>
   static void permute_values(std::vector<T>& v, const std::vector<std::uint32_t>& perm) {
@@ -766,6 +798,7 @@ private:
   using Diag = detail::Diagnostics<Simulation>;
   using Limits = detail::TimeStepLimits<Simulation>;
   using VPStep = detail::VariablePropertyStep<Simulation>;
+  using Check = detail::StateCheck<Simulation>;
   friend Pass;
   friend Heat;
   friend Motion;
@@ -774,6 +807,7 @@ private:
   friend Diag;
   friend Limits;
   friend VPStep;
+  friend Check;
   friend detail::SetUp<Simulation, D, Contact>;
   friend detail::GroupsAndConditions<Simulation, D>;
   friend detail::Observables<Simulation, D, Contact>;
@@ -848,6 +882,11 @@ private:
   /// index k (`none` for a new one); empty = unchanged indices.
   std::vector<std::uint32_t> origin_;
   RunCounters counters_;
+  // state checks (StateCheck)
+  std::vector<std::int64_t> fresh_ids_;   ///< particles added since the last start
+  std::size_t checked_walls_ = 0;         ///< walls below this index were there at the last start
+  std::string start_limits_;              ///< the stable limits at the start, for messages
+  mutable std::string warned_insulating_; ///< the materials of the last conductivity warning
 };
 
 } // namespace grain

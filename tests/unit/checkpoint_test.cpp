@@ -37,6 +37,7 @@ S make(double young = 1e7) {
   typename S::Params prm;
   prm.time_step = 2e-6;
   prm.gravity = Vec3(0, 0, -9.81);
+  prm.max_start_overlap = 0.25; // the pile starts with particles up to 0.17 R into each other
   S sim(prm);
   Material m;
   m.density = 2500;

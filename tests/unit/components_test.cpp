@@ -297,7 +297,7 @@ TEST_CASE("a thermo-mechanical run whose particles are all fixed has the conduct
   using Hot =
       Interaction<normal::Hertz<>, tangent::Mindlin, rolling::None, conduction::BatchelorOBrien>;
   auto make = [](bool one_free) {
-    Simulation<Sphere, search::CellList, Hot> sim;
+    Simulation<Sphere, search::CellList, Hot> sim({.max_start_overlap = 0.2}); // 0.1 R
     const auto m = sim.add_material({.density = 2500,
                                      .young = 1e9,
                                      .poisson = 0.25,

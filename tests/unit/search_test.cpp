@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -46,6 +47,10 @@ std::set<Key> brute_contacts(const Sim& sim) {
   return out;
 }
 
+/// Any overlap at the start and any speed are allowed: the random packings below overlap deeply
+/// and fire particles apart, to stress the searches.
+constexpr double unchecked = std::numeric_limits<double>::infinity();
+
 /// Dense random polydisperse packing in a box [0, L]^D with walls, size ratio up to `ratio`.
 template <class Sim>
 void fill(Sim& sim, int n, double ratio, unsigned seed, double speed) {
@@ -83,8 +88,13 @@ void check_search(int n, double ratio, unsigned seed, typename SearchT::Params s
   constexpr int D = Shape::dimension;
   Vec<D> g = Vec<D>::Zero();
   g[D - 1] = -9.81;
-  Sim sim(
-      {.time_step = 2e-5, .gravity = g, .contact = {.normal = {.stiffness = 50.0}}, .search = sp});
+  // the random packing overlaps deeply at the start, on purpose (soft springs)
+  Sim sim({.time_step = 2e-5,
+           .gravity = g,
+           .contact = {.normal = {.stiffness = 50.0}},
+           .search = sp,
+           .max_start_overlap = unchecked,
+           .max_step_travel = unchecked});
   fill(sim, n, ratio, seed, 0.5);
   sim.initialize();
   const auto initial = brute_contacts(sim);
@@ -125,8 +135,10 @@ TEST_CASE("searches find exactly the touching pairs, 3D polydisperse with walls"
 TEST_CASE("all three searches give the same contact set on the same configuration") {
   auto contacts = [](auto tag) {
     using SearchT = decltype(tag);
-    Simulation<Sphere, SearchT, Contact> sim(
-        {.time_step = 1e-5, .contact = {.normal = {.stiffness = 50.0}}});
+    Simulation<Sphere, SearchT, Contact> sim({.time_step = 1e-5,
+                                              .contact = {.normal = {.stiffness = 50.0}},
+                                              .max_start_overlap = unchecked,
+                                              .max_step_travel = unchecked});
     fill(sim, 400, 10.0, 42, 0.0);
     sim.initialize();
     return listed_contacts(sim);
@@ -148,7 +160,9 @@ TEST_CASE("the motion does not depend on the search (rows of any length)") {
     Simulation<Sphere, SearchT, Contact> sim({.time_step = 1e-5,
                                               .gravity = Vec3(0, 0, -9.81),
                                               .contact = {.normal = {.stiffness = 50.0}},
-                                              .search = sp});
+                                              .search = sp,
+                                              .max_start_overlap = unchecked,
+                                              .max_step_travel = unchecked});
     fill(sim, 400, 10.0, 11, 0.5);
     sim.steps(40);
     std::map<std::int64_t, std::pair<Vec3, Vec3>> state; // id -> (velocity, angular velocity)
@@ -180,7 +194,9 @@ TEST_CASE("cell list re-sorts particles but keeps ids and contact histories") {
   Sim sim({.time_step = 2e-5,
            .gravity = Vec2(0, -9.81),
            .contact = {.normal = {.stiffness = 50.0}},
-           .search = {.skin = 1e-5}});
+           .search = {.skin = 1e-5},
+           .max_start_overlap = unchecked,
+           .max_step_travel = unchecked});
   fill(sim, 200, 2.0, 11, 0.3);
   sim.initialize();
   auto ids = sim.particles().id;

@@ -53,6 +53,10 @@
 /// the convention here is the restoring one, and for the plane it coincides with the manual's
 /// reading, since e = -n.) A contact element against a plane is a table that is zero for s > 0,
 /// e.g. {{-1, -k}, {0, 0}, {1, 0}}: penetration s < 0 gives F < 0, pushing point 1 out along n.
+/// A table may have falling branches (a negative slope: softening after a peak, snap-through);
+/// they are followed as given, on purpose. The dashpot of a damping ratio then uses max(k, 0)
+/// (it never becomes a source of energy), and a falling branch adds no stiffness to the time
+/// step's estimate; a structure that is statically unstable on such a branch moves dynamically.
 ///
 /// ## Offset
 ///

@@ -9,6 +9,8 @@
 /// parameters (see docs/adding_a_model.md).
 
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -23,12 +25,31 @@ public:
   using std::invalid_argument::invalid_argument;
 };
 
-/// Raised when a run becomes numerically invalid: a particle position or temperature that is no
-/// longer finite (usually a time step above the stable limit, or a non-finite load or property).
+/// Raised when a run becomes numerically invalid: a particle quantity that is no longer finite,
+/// a particle moving more than its radius per step, or one inside another (usually a time step
+/// above the stable limit, or a non-finite load or property; see simulation/state_check.hpp).
 class NumericalError : public std::runtime_error {
 public:
   using std::runtime_error::runtime_error;
 };
+
+/// The function that receives grain's warnings (a set-up that is valid but probably not meant,
+/// such as a particle material that conducts no heat in a thermal run). By default each warning
+/// is written to standard error as one line "grain: warning: <message>"; a program may set its
+/// own (to log, collect or raise them), or an empty function to silence them.
+inline std::function<void(const std::string&)>& warning_handler() {
+  static std::function<void(const std::string&)> handler = [](const std::string& message) {
+    std::fprintf(stderr, "grain: warning: %s\n", message.c_str());
+  };
+  return handler;
+}
+
+namespace detail {
+/// Passes `message` to the warning handler, if there is one.
+inline void warn(const std::string& message) {
+  if (const auto& h = warning_handler()) h(message);
+}
+} // namespace detail
 
 namespace detail {
 

@@ -18,4 +18,11 @@ void finish_observer(O& o, S& s) {
   if constexpr (requires { o.finish(s); }) o.finish(s);
 }
 
+/// Calls `s.check_state()` if the simulated system has it (Simulation::check_state: throws
+/// NumericalError for a state gone wrong).
+template <class S>
+void check_state(const S& s) {
+  if constexpr (requires { s.check_state(); }) s.check_state();
+}
+
 } // namespace grain::detail

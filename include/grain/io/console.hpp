@@ -24,6 +24,7 @@
 /// \endcode
 
 #include <grain/core/error.hpp>
+#include <grain/core/observer.hpp>
 #include <grain/io/csv.hpp>
 #include <grain/io/write_error.hpp>
 
@@ -296,6 +297,7 @@ private:
   }
   template <class Sim>
   void fire(const Sim& sim) {
+    grain::detail::check_state(sim); // nothing is written from a state gone wrong
     last_step = sim.step_count();
     std::apply([&](auto&... a) { (a(sim), ...); }, actions);
   }
@@ -338,6 +340,7 @@ struct EverySteps {
 private:
   template <class Sim>
   void fire(const Sim& sim) {
+    grain::detail::check_state(sim); // nothing is written from a state gone wrong
     last_step = sim.step_count();
     std::apply([&](auto&... a) { (a(sim), ...); }, actions);
   }

@@ -14,6 +14,7 @@
 /// | `Diagnostics<Sim>`    | diagnostics.hpp    | read-only visits of contacts and conductances   |
 /// | `TimeStepLimits<Sim>` | time_step.hpp      | the stable limits and the step of a run         |
 /// | `VariablePropertyStep<Sim>` | variable_properties.hpp | properties that follow tables, applied |
+/// | `StateCheck<Sim>`     | state_check.hpp    | a state gone wrong, overlaps at the start       |
 ///
 /// The public API is declared in `Simulation` (the run: initialize, step, steps, run, the
 /// checkpoint, the time step) and in three bases that know their derived class: `SetUp<Sim, D,
@@ -45,6 +46,8 @@ template <class Sim>
 struct TimeStepLimits;
 template <class Sim>
 struct VariablePropertyStep;
+template <class Sim>
+struct StateCheck;
 template <class Sim, int D, class Contact>
 class SetUp;
 template <class Sim, int D>

@@ -217,6 +217,7 @@ struct LifecycleStep {
       s.life_.pending.push_back(ps);
     } else {
       append_particle(s, ps);
+      s.fresh_ids_.push_back(id); // its overlaps are checked at the next start
       s.groups_dirty_ = true;
     }
     s.initialized_ = false;

@@ -88,6 +88,16 @@ struct SimulationParams {
   double damping_rotational = 0.0;    ///< global damping torque -c w, c in [N m s]
   typename Contact::Params contact{}; ///< coefficients of the contact models
   typename SearchT::Params search{};  ///< neighbour-search settings
+  /// The largest overlap allowed at the start of a run, as a fraction of the smaller radius
+  /// (of the particle's radius against a wall), for the particles and walls added since the
+  /// last start: a deeper one is an InputError naming both (it would fire them apart; a centre
+  /// behind a plane overlaps it by more than the radius). Infinity allows any overlap.
+  double max_start_overlap = 0.05;
+  /// The largest distance a particle may travel in one step, as a fraction of its radius (and
+  /// the largest angle it may turn, in radians): beyond it the run stops with NumericalError
+  /// (no contact can be resolved at that speed; a stable step gives far less). Infinity turns
+  /// the check off.
+  double max_step_travel = 1.0;
 
   // thermal settings (used when the contact has a conduction model)
   Analysis analysis = Analysis::automatic;

@@ -289,15 +289,16 @@ struct VariablePropertyStep {
       if (any && s.initialized_ && s.analysis() == Analysis::thermal) Heat::store_conductances(s);
       if (thermal_change && s.initialized_ && s.heats()) {
         // the conduction limit moves with the conductivities and heat capacities
-        const double limit = s.conduction_time_step();
-        if (s.dt_ > limit)
+        if (!TimeStepLimits<Sim>::conduction_stable(s, s.dt_)) {
+          const double limit = s.conduction_time_step();
           throw InputError(
               "Simulation: time_step = " + detail::to_text(s.dt_) +
-              " s is above the conduction limit " + detail::to_text(limit) +
-              " s reached at t = " + detail::to_text(s.time_) +
+              " s is above the conduction limit 2 / lambda_max(C^-1 L) = " +
+              detail::to_text(limit) + " s reached at t = " + detail::to_text(s.time_) +
               " s by a variable property (conductivity, heat capacity, density or radius); valid "
               "range: (0, " +
-              detail::to_text(limit) + "] s (give a smaller time_step or auto_time_step_factor)");
+              detail::to_text(limit) + ") s (give a smaller time_step or auto_time_step_factor)");
+        }
       }
     }
     return any;
