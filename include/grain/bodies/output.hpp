@@ -62,7 +62,10 @@
 /// io::every that writes `prefix_bodies_NNNNNN.vtk` (and `prefix_meshes_...`,
 /// `prefix_springs_...`, `prefix_torsion_springs_...`, `prefix_joints_...` if the system has mesh
 /// bodies, springs, torsion springs or joints) per call, and the ParaView series files
-/// `prefix_<kind>.vtk.series`.
+/// `prefix_<kind>.vtk.series`. As with io::vtk, each file is written under a temporary name and
+/// renamed once complete, a frame before the series that lists it (a killed run leaves whole
+/// files), and a file that cannot be written throws io::WriteError naming the writer, the file
+/// and the reason.
 
 #include <grain/bodies/system.hpp>
 #include <grain/core/error.hpp>
@@ -314,7 +317,7 @@ inline void write_bodies_vtk(const BodySystem& s, const std::string& path,
   namespace d = grain::io::detail;
   const RigidBodies& b = s.bodies();
   const std::size_t n = b.size();
-  d::LegacyVtkFile o(path, format, "bodies", s.time());
+  d::LegacyVtkFile o(path, format, "bodies", s.time(), "grain::bodies::write_bodies_vtk");
   o.points(n, [&](std::size_t k) { return d::xyz(b.position[k]); });
   o.vertices(n);
   if (n == 0) return o.close(path);
@@ -363,7 +366,7 @@ inline void write_meshes_vtk(const BodySystem& s, const std::string& path,
       velocity.push_back(point_velocity(b, i, centroid));
     }
   }
-  d::LegacyVtkFile o(path, format, "meshes", s.time());
+  d::LegacyVtkFile o(path, format, "meshes", s.time(), "grain::bodies::write_meshes_vtk");
   o.points(pts.size(), [&](std::size_t k) { return d::xyz(pts[k]); });
   o.cells("POLYGONS", cells);
   const std::size_t m = cells.size();
@@ -388,7 +391,7 @@ inline void write_springs_vtk(const BodySystem& s, const std::string& path,
     pts.push_back(p1);
     pts.push_back(p2);
   }
-  d::LegacyVtkFile o(path, format, "springs", s.time());
+  d::LegacyVtkFile o(path, format, "springs", s.time(), "grain::bodies::write_springs_vtk");
   o.points(pts.size(), [&](std::size_t k) { return d::xyz(pts[k]); });
   o.cells("LINES", lines);
   if (m == 0) return o.close(path);
@@ -409,7 +412,7 @@ inline void write_joints_vtk(const BodySystem& s, const std::string& path,
                              io::VtkFormat format = io::VtkFormat::ascii) {
   namespace d = grain::io::detail;
   const std::size_t n = s.joint_count();
-  d::LegacyVtkFile o(path, format, "joints", s.time());
+  d::LegacyVtkFile o(path, format, "joints", s.time(), "grain::bodies::write_joints_vtk");
   o.points(n, [&](std::size_t k) { return d::xyz(s.joint_points(k).first); });
   o.vertices(n);
   if (n == 0) return o.close(path);
@@ -429,7 +432,8 @@ inline void write_torsion_springs_vtk(const BodySystem& s, const std::string& pa
                                       io::VtkFormat format = io::VtkFormat::ascii) {
   namespace d = grain::io::detail;
   const std::size_t n = s.torsion_spring_count();
-  d::LegacyVtkFile o(path, format, "torsion_springs", s.time());
+  d::LegacyVtkFile o(path, format, "torsion_springs", s.time(),
+                     "grain::bodies::write_torsion_springs_vtk");
   o.points(n, [&](std::size_t k) {
     return d::xyz(s.bodies().position[static_cast<std::size_t>(s.torsion_link(k).body1)]);
   });
@@ -470,7 +474,7 @@ struct BodyVtkWriter {
       const std::string name = std::string("_") + kind + "_" + num.str() + ".vtk";
       write(s, prefix + name, format);
       files.emplace_back(stem + name, s.time());
-      io::detail::write_series(prefix, kind, files);
+      io::detail::write_series(prefix, kind, files, "grain::bodies::body_vtk");
     };
     one("bodies", write_bodies_vtk, body_files);
     if (s.mesh_count() > 0) one("meshes", write_meshes_vtk, mesh_files);

@@ -25,6 +25,7 @@
 /// of walls is rejected with an `InputError` that says what differs; a truncated file is too.
 
 #include <grain/core/error.hpp>
+#include <grain/io/atomic_file.hpp>
 #include <grain/io/console.hpp>
 #include <grain/io/write_error.hpp>
 #include <grain/simulation.hpp>
@@ -260,9 +261,10 @@ inline constexpr char end_mark[8] = {'G', 'R', 'A', 'I', 'N', 'E', 'N', 'D'};
 
 /// Writes the run state of an initialised simulation (one that has run, or whose initialize() was
 /// called) to `path`. The file is written to `path`.tmp, closed and checked, and only then renamed
-/// to `path`, so that neither an interrupted write nor a failed one (a full disk) leaves a broken
-/// checkpoint under the final name: a failed write removes the temporary file, keeps the previous
-/// checkpoint at `path` and throws a std::runtime_error naming the file and the reason.
+/// to `path` (io/atomic_file.hpp), so that neither an interrupted write (a killed run) nor a
+/// failed one (a full disk) leaves a broken checkpoint under the final name: a failed write
+/// removes the temporary file, keeps the previous checkpoint at `path` and throws io::WriteError
+/// naming the writer, the files and the reason.
 template <class Sim>
 void save_checkpoint(const Sim& sim, const std::string& path) {
   sim.require_whole_steps("grain::io::save_checkpoint");
@@ -270,12 +272,9 @@ void save_checkpoint(const Sim& sim, const std::string& path) {
     throw InputError("grain::io::save_checkpoint: simulation = not initialised is invalid; valid: "
                      "a simulation after initialize() or a run");
   detail::require_output_folder("grain::io::save_checkpoint", path);
-  const std::string tmp = path + ".tmp";
+  detail::AtomicFile file("grain::io::save_checkpoint", path, true);
   try {
-    errno = 0;
-    std::ofstream o(tmp, std::ios::binary);
-    if (!o) throw detail::write_error("grain::io::save_checkpoint", tmp, errno);
-    detail::Archive<false> ar(o, tmp);
+    detail::Archive<false> ar(file.stream(), path);
     char m[8];
     std::memcpy(m, detail::magic, 8);
     std::uint32_t version = checkpoint_format_version;
@@ -286,20 +285,12 @@ void save_checkpoint(const Sim& sim, const std::string& path) {
     const_cast<Sim&>(sim).serialize(ar); // writing only reads the state
     std::memcpy(m, detail::end_mark, 8);
     ar(m);
-    // the last bytes reach the file when it is closed: only a stream still good after the close
-    // holds the whole checkpoint
-    errno = 0;
-    o.flush();
-    if (o) o.close();
-    if (!o)
-      throw detail::write_error("grain::io::save_checkpoint", tmp, errno,
-                                "; the file is removed and '" + path + "' is left as it was");
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
+  } catch (const WriteError& e) { // a write in the middle failed: the same message as at the end
+    file.fail(e.error_number());
   }
-  std::filesystem::rename(tmp, path);
+  // the last bytes reach the file when it is closed: only a file still good after the close
+  // holds the whole checkpoint, and only then is it renamed
+  file.commit();
 }
 
 /// Reads a checkpoint written by save_checkpoint into `sim`, a simulation of the same type set up

@@ -15,7 +15,8 @@
 ///
 /// Neither calls its actions twice at one step: not when a run starts where the previous run with
 /// the same object ended (no duplicate row at the junction), nor when the end falls on an output.
-/// A line of `print` that cannot be written throws std::runtime_error (the file and the reason).
+/// A line of `print` is written whole with one write and flushed; one that cannot be written
+/// throws io::WriteError (the file and the reason), and a file keeps the whole lines before it.
 ///
 /// \code
 /// sim.run(1.0, io::summary(), io::progress(),
@@ -25,6 +26,7 @@
 
 #include <grain/core/error.hpp>
 #include <grain/core/observer.hpp>
+#include <grain/io/atomic_file.hpp>
 #include <grain/io/csv.hpp>
 #include <grain/io/write_error.hpp>
 
@@ -363,8 +365,8 @@ struct Print {
   std::FILE* out = stdout;
   std::string path{}; ///< a text file to write instead of `out`, if not empty
   std::tuple<Columns...> columns;
-  int digits = 6; ///< significant digits, [1, 17]
-  std::shared_ptr<std::FILE> file_{};
+  int digits = 6;                            ///< significant digits, [1, 17]
+  std::shared_ptr<detail::LineFile> file_{}; ///< the file at `path`, if set
   std::vector<std::size_t> widths_{};
   std::vector<double> cells_{};
   bool started_ = false;
@@ -378,9 +380,7 @@ struct Print {
     detail::names_of_all(columns, sim, names);
     if (!path.empty()) {
       detail::require_output_folder("grain::io::print", path);
-      std::FILE* f = std::fopen(path.c_str(), "w");
-      if (!f) throw std::runtime_error("grain::io::print: cannot open '" + path + "' for writing");
-      file_ = std::shared_ptr<std::FILE>(f, [](std::FILE* g) { std::fclose(g); });
+      file_ = std::make_shared<detail::LineFile>("grain::io::print", path);
     }
     const std::size_t numeric = static_cast<std::size_t>(digits) + 7; // -1.23457e-05
     widths_.clear();
@@ -424,11 +424,13 @@ private:
     if (cell.size() < widths_[k]) line.append(widths_[k] - cell.size(), ' ');
     line += cell;
   }
-  /// Writes a line and flushes it; throws if it did not reach the file or stream.
-  void emit(const std::string& line) const {
-    std::FILE* f = file_ ? file_.get() : out;
+  /// Writes a line with its line break in one write and flushes it; throws WriteError if it did
+  /// not reach the file or stream (a file then keeps the whole lines before it).
+  void emit(std::string line) const {
+    line += '\n';
+    if (file_) return file_->write(line);
     errno = 0;
-    if (std::fputs(line.c_str(), f) == EOF || std::fputc('\n', f) == EOF || std::fflush(f) == EOF)
+    if (std::fwrite(line.data(), 1, line.size(), out) != line.size() || std::fflush(out) == EOF)
       throw detail::write_error("grain::io::print", target(), errno);
   }
   /// The file or stream written, for messages.

@@ -1,13 +1,15 @@
 #pragma once
 /// \file csv.hpp
 /// Time histories as CSV files: one row per call (use with `io::every(interval, ...)` or
-/// `io::every_steps(n, ...)`), a header row first, every row flushed at once, so that a run that
-/// stops halfway leaves a valid file up to the last row written. Values are written with 17
+/// `io::every_steps(n, ...)`), a header row first. Each row is formatted whole and written with
+/// one write, then flushed (io/atomic_file.hpp, LineFile), so that a run killed at any moment
+/// leaves a valid file of whole rows up to the last row written. Values are written with 17
 /// significant digits in the "C" locale; a missing value (a particle that is not active, the mean
 /// over an empty group) is written `nan` (never an empty cell, so that every cell parses as a
 /// number, e.g. with Python's float()). A row that cannot be written (a full disk) throws
-/// std::runtime_error naming the writer, the file and the reason. A writer's `resume` member
-/// continues the file of a run restarted from a checkpoint (see CsvWriter::resume).
+/// io::WriteError naming the writer, the file and the reason, and is cut from the file: the file
+/// keeps the whole rows before it. A writer's `resume` member continues the file of a run
+/// restarted from a checkpoint (see CsvWriter::resume).
 ///
 /// \code
 /// sim.run(1.0, io::every(1e-2, io::history("out/global.csv", io::lifecycle_columns()),
@@ -73,6 +75,7 @@
 
 #include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
+#include <grain/io/atomic_file.hpp>
 #include <grain/io/write_error.hpp>
 
 #include <algorithm>
@@ -840,9 +843,9 @@ struct CsvWriter {
   /// of the steps before the step at which the writer starts, drop the later ones and append.
   /// Without such rows (or without the file) the file is written anew.
   bool resume = false;
-  std::shared_ptr<std::ofstream> out{};
-  std::size_t width = 0;        ///< number of cells after time and step
-  std::vector<double> cells_{}; ///< one row's cells
+  std::shared_ptr<detail::LineFile> out{}; ///< the file (shared by the copies of the writer)
+  std::size_t width = 0;                   ///< number of cells after time and step
+  std::vector<double> cells_{};            ///< one row's cells
 
   template <class Sim>
   void start(const Sim& sim) {
@@ -865,12 +868,8 @@ struct CsvWriter {
     const std::uintmax_t keep =
         resume ? detail::resumable_bytes(path, header, sim.step_count()) : 0;
     if (keep > 0) std::filesystem::resize_file(path, keep);
-    auto file = keep > 0 ? std::make_shared<std::ofstream>(path, std::ios::app)
-                         : std::make_shared<std::ofstream>(path);
-    if (!*file) throw std::runtime_error("grain::io::csv: cannot open '" + path + "' for writing");
-    file->imbue(std::locale::classic());
-    if (keep == 0) *file << header;
-    detail::flush_or_throw(*file, "grain::io::csv", path);
+    auto file = std::make_shared<detail::LineFile>("grain::io::csv", path, keep);
+    if (keep == 0) file->write(header);
     out = std::move(file);
   }
 
@@ -905,8 +904,7 @@ struct CsvWriter {
       detail::write_number(row, v);
     }
     row << '\n';
-    *out << row.str();
-    detail::flush_or_throw(*out, "grain::io::csv", path);
+    out->write(row.str()); // the whole row with one write, or none of it
   }
 };
 

@@ -45,8 +45,14 @@
 ///
 /// With `resume = true` the writer continues the series of a run restarted from a checkpoint: it
 /// keeps the entries of the series files before the time at which it starts, numbers its files
-/// on after the last of them and removes the files of the later entries. A file that cannot be
-/// written throws std::runtime_error naming the file and the reason.
+/// on after the last of them and removes the files of the later entries.
+///
+/// Every file (a frame, a series file) is written under a temporary name (`<file>.tmp`) and
+/// renamed over its final name once it is complete (see io/atomic_file.hpp), and a frame is
+/// written before the series file that lists it: a run killed at any moment leaves the files it
+/// had finished, whole, and series files that name only those. A file that cannot be written (a
+/// full disk) throws io::WriteError naming the writer, the file and the reason, and leaves the
+/// file of that name as it was.
 ///
 /// Walls: lines in 2D, polygons in 3D, with cell data `wall` (the wall index) and, in thermal
 /// simulations, `conducts` and `temperature` [K]. Infinite planes are drawn as squares of side
@@ -73,6 +79,7 @@
 #include <grain/contact/frame.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/vector.hpp>
+#include <grain/io/atomic_file.hpp>
 #include <grain/io/write_error.hpp>
 #include <grain/walls/walls.hpp>
 #include <iomanip>
@@ -179,12 +186,13 @@ Fields resolve_fields(Fields f, const char* who) {
 
 /// One legacy VTK polydata file being written. Keyword lines are text in both formats; numbers
 /// are text (one tuple per line) or big-endian binary, each binary block ending with a newline.
+/// The file is written under a temporary name and takes its own by close() (AtomicFile); `who`
+/// names the writer in the messages of a failed write.
 class LegacyVtkFile {
 public:
-  LegacyVtkFile(const std::string& path, VtkFormat format, const char* kind, double time)
-      : binary_(format == VtkFormat::binary),
-        out_(path, binary_ ? std::ios::out | std::ios::binary : std::ios::out) {
-    if (!out_) throw std::runtime_error("grain::io::vtk: cannot open '" + path + "' for writing");
+  LegacyVtkFile(const std::string& path, VtkFormat format, const char* kind, double time,
+                const char* who = "grain::io::vtk")
+      : binary_(format == VtkFormat::binary), file_(who, path, binary_), out_(file_.stream()) {
     out_.imbue(std::locale::classic());
     out_ << std::setprecision(17) << "# vtk DataFile Version 3.0\ngrain " << kind << " t = " << time
          << '\n'
@@ -253,16 +261,14 @@ public:
     end_block();
   }
 
-  /// Flushes and closes the file; throws if anything could not be written.
-  void close(const std::string& path) {
-    errno = 0;
-    out_.close();
-    if (!out_) throw write_error("grain::io::vtk", path, errno);
-  }
+  /// Flushes and closes the file and gives it its name (`path`, the name it was opened with);
+  /// throws WriteError if anything could not be written, leaving the file of that name as it was.
+  void close([[maybe_unused]] const std::string& path) { file_.commit(); }
 
 private:
   bool binary_;
-  std::ofstream out_;
+  AtomicFile file_;
+  std::ostream& out_;
   std::string buffer_{}; // binary block being built
   bool first_ = true;    // no value yet on the current ASCII line
 
@@ -500,23 +506,22 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
 }
 
 namespace detail {
-/// Rewrites `prefix_kind.vtk.series` (ParaView's file-series format) with one entry per file.
-/// Throws if the file could not be written.
+/// Rewrites `prefix_kind.vtk.series` (ParaView's file-series format) with one entry per file,
+/// under a temporary name renamed over the old series once complete (AtomicFile). Throws
+/// WriteError naming `who` if the file could not be written, leaving the old series as it was.
 inline void write_series(const std::string& prefix, const char* kind,
-                         const std::vector<std::pair<std::string, double>>& files) {
+                         const std::vector<std::pair<std::string, double>>& files,
+                         const char* who = "grain::io::vtk") {
   const std::string path = prefix + "_" + kind + ".vtk.series";
-  errno = 0;
-  std::ofstream o(path);
-  if (!o) throw write_error("grain::io::vtk", path, errno);
+  AtomicFile file(who, path);
+  std::ostream& o = file.stream();
   o.imbue(std::locale::classic());
   o << std::setprecision(17) << "{\n  \"file-series-version\" : \"1.0\",\n  \"files\" : [\n";
   for (std::size_t k = 0; k < files.size(); ++k)
     o << "    { \"name\" : \"" << files[k].first << "\", \"time\" : " << files[k].second << " }"
       << (k + 1 < files.size() ? ",\n" : "\n");
   o << "  ]\n}\n";
-  errno = 0;
-  o.close();
-  if (!o) throw write_error("grain::io::vtk", path, errno);
+  file.commit();
 }
 /// The entries (file name, time) of `prefix_kind.vtk.series` as write_series writes them; none
 /// if there is no such file.
@@ -613,14 +618,17 @@ private:
       if (files.empty()) return;
       const auto later = std::find_if(files.begin(), files.end(),
                                       [&](const auto& f) { return !(f.second < before); });
-      for (auto f = later; f != files.end(); ++f) // only files this writer names
-        if (f->first.rfind(stem + "_" + kind + "_", 0) == 0 &&
-            f->first.find('/') == std::string::npos) {
-          std::error_code ignored;
-          std::filesystem::remove(base.parent_path() / f->first, ignored);
-        }
+      const std::vector<std::pair<std::string, double>> dropped(later, files.end());
       files.erase(later, files.end());
-      detail::write_series(prefix, kind, files); // the entries kept
+      // the series of the entries kept first, then the files it no longer names: a series never
+      // names a removed file, also when the run is killed in between
+      detail::write_series(prefix, kind, files);
+      for (const auto& f : dropped) // only files this writer names
+        if (f.first.rfind(stem + "_" + kind + "_", 0) == 0 &&
+            f.first.find('/') == std::string::npos) {
+          std::error_code ignored;
+          std::filesystem::remove(base.parent_path() / f.first, ignored);
+        }
     };
     take_up("particles", particle_files);
     take_up("walls", wall_files);

@@ -1,9 +1,10 @@
 #pragma once
 /// \file write_error.hpp
 /// The error raised by the output helpers when a file could not be written (a full disk, a file
-/// size limit, a stream closed under them): a std::runtime_error that names the helper, the file
-/// and the reason, e.g. "grain::io::csv: cannot write 'out/h.csv': No space left on device"; and
-/// the check of an output folder before a run (`require_output_folder`), an InputError.
+/// size limit, a stream closed under them): io::WriteError, a std::runtime_error that names the
+/// helper, the file and the reason, e.g. "grain::io::csv: cannot write 'out/h.csv': No space left
+/// on device"; and the check of an output folder before a run (`require_output_folder`), an
+/// InputError.
 
 #include <grain/core/error.hpp>
 
@@ -15,16 +16,38 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
+
+namespace grain::io {
+
+/// A file that could not be written: "<writer>: cannot write '<path>': <reason>...". `path()` is
+/// the file the writer was asked for, `error_number()` the errno of the failure (EFBIG for a file
+/// size limit, ENOSPC for a full disk; 0 if the failed call did not set it).
+class WriteError : public std::runtime_error {
+public:
+  WriteError(const std::string& message, std::string path, int error_number)
+      : std::runtime_error(message), path_(std::move(path)), error_number_(error_number) {}
+  const std::string& path() const { return path_; }
+  int error_number() const { return error_number_; }
+
+private:
+  std::string path_;
+  int error_number_;
+};
+
+} // namespace grain::io
 
 namespace grain::io::detail {
 
-/// std::runtime_error("<who>: cannot write '<path>': <reason><note>"), the reason that of the
-/// error number `err` (errno after the failed call; 0 if the call did not set it).
-inline std::runtime_error write_error(const std::string& who, const std::string& path, int err,
-                                      const std::string& note = "") {
-  const std::string reason =
-      err != 0 ? std::string(std::strerror(err)) : std::string("the stream reported a failure");
-  return std::runtime_error(who + ": cannot write '" + path + "': " + reason + note);
+/// The reason of the error number `err` (errno after the failed call; 0 if it did not set it).
+inline std::string write_reason(int err) {
+  return err != 0 ? std::string(std::strerror(err)) : std::string("the stream reported a failure");
+}
+
+/// WriteError("<who>: cannot write '<path>': <reason><note>").
+inline WriteError write_error(const std::string& who, const std::string& path, int err,
+                              const std::string& note = "") {
+  return WriteError(who + ": cannot write '" + path + "': " + write_reason(err) + note, path, err);
 }
 
 /// Flushes `o` and throws write_error unless everything written to it so far reached the file.
