@@ -2,8 +2,11 @@
 # Installs the Debian packages grain needs for its examples, tests and benchmarks (only those
 # that are missing). Uses sudo when not run as root.
 set -euo pipefail
+# clang and libclang-rt-14-dev (libFuzzer and the sanitizer runtimes) build the fuzz targets of
+# fuzz/ (scripts/fuzz.sh, the grain_fuzz_replay test, which is skipped without them)
 packages=(build-essential cmake libeigen3-dev libboost-dev doctest-dev libbenchmark-dev
-          libqhull-dev ccache clang-format python3-vtk9 python3-numpy python3-matplotlib povray)
+          libqhull-dev ccache clang-format clang libclang-rt-14-dev python3-vtk9 python3-numpy
+          python3-matplotlib povray)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

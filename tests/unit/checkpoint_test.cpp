@@ -235,3 +235,47 @@ TEST_CASE("checkpoint: files that do not fit are rejected with the reason") {
                          doctest::Contains("not initialised"), InputError);
   }
 }
+
+TEST_CASE("checkpoint: corrupt contents are rejected before the simulation takes them") {
+  const std::string path = temp_path("contents.ckpt");
+  Sim a = make<Sim>();
+  a.run(0.001);
+  io::save_checkpoint(a, path);
+  // the length of the first per-particle array (ids) follows the header
+  const std::size_t ids = 8 + 4 + 8 + std::string(GRAIN_VERSION_STRING).size() + 8 +
+                          io::detail::signature<Sim>().size() + 8 +
+                          8 * io::detail::material_numbers(a.materials()).size() + 8 + 8;
+  const auto patched = [&](std::size_t at, const auto& value) {
+    const std::string bad = temp_path("patched.ckpt");
+    std::filesystem::copy_file(path, bad, std::filesystem::copy_options::overwrite_existing);
+    std::fstream f(bad, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(at));
+    f.write(reinterpret_cast<const char*>(&value), sizeof value);
+    return bad;
+  };
+  std::uint64_t n = 0;
+  {
+    std::ifstream f(path, std::ios::binary);
+    f.seekg(static_cast<std::streamoff>(ids));
+    f.read(reinterpret_cast<char*>(&n), sizeof n);
+  }
+  REQUIRE(n == a.size());
+  Sim b = make<Sim>();
+  SUBCASE("per-particle arrays of another length than the number of particles") {
+    const std::string why = "a per-particle array of " + std::to_string(n - 1) + " entries for " +
+                            std::to_string(n) + " particles";
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, patched(ids, std::uint64_t{n - 1})),
+                         doctest::Contains(why.c_str()), InputError);
+  }
+  SUBCASE("a length larger than the file can hold") {
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, patched(ids, std::uint64_t{1} << 61)),
+                         doctest::Contains("a length of 2305843009213693952"), InputError);
+  }
+  SUBCASE("a truth value that is neither 0 nor 1") {
+    // the last item before the end mark is the flag `initialized`
+    const auto flag = std::filesystem::file_size(path) - 8 - 1;
+    CHECK_THROWS_WITH_AS(io::load_checkpoint(b, patched(flag, std::uint8_t{2})),
+                         doctest::Contains("a truth value of 2"), InputError);
+  }
+  CHECK_FALSE(b.initialized()); // each failed load leaves b as it was
+}

@@ -255,3 +255,24 @@ TEST_CASE("a resumed CSV writer keeps the file only if its columns are the same"
                                     "[J],active,inactive,removed\n"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("a resumed VTK writer numbers on only after a frame number it can continue") {
+  const auto dir = scratch("grain_io_output_test/series", Folder::empty);
+  const std::string prefix = (dir / "bed").string();
+  Sim3 sim = pile();
+  sim.initialize();
+  auto next_after = [&](const std::string& name) {
+    std::ofstream(prefix + "_particles.vtk.series")
+        << "{ \"files\" : [ { \"name\" : \"" << name << "\", \"time\" : -1 } ] }\n";
+    auto writer = io::vtk(prefix, {.resume = true});
+    writer.start(sim);
+    return writer.count;
+  };
+  CHECK(next_after("bed_particles_000041.vtk") == 42);
+  // the largest int has no next number, a negative one is not a frame, another stem not ours:
+  // the frames are counted instead
+  CHECK(next_after("bed_particles_2147483647.vtk") == 1);
+  CHECK(next_after("bed_particles_-5.vtk") == 1);
+  CHECK(next_after("other_particles_000041.vtk") == 1);
+  std::filesystem::remove_all(dir);
+}

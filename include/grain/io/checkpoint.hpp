@@ -33,6 +33,7 @@
 
 #include <Eigen/Geometry>
 
+#include <array>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -94,6 +95,30 @@ void serialize_fields(Ar& ar, walls::Triangle& g) {
   if (g.mesh) ar(g.origin, g.orientation); // an obstacle's pose (its mesh is set-up)
 }
 
+/// The fewest bytes an item of type T takes in a checkpoint (1 if not known): a length read for
+/// a vector of T is checked against the bytes left with it, so that a corrupt length cannot ask
+/// for more memory than the file could fill.
+template <class T>
+constexpr std::uint64_t min_bytes() {
+  if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+    return sizeof(T);
+  } else if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>) {
+    return static_cast<std::uint64_t>(T::SizeAtCompileTime) * sizeof(typename T::Scalar);
+  } else if constexpr (std::is_same_v<T, Eigen::Quaterniond>) {
+    return 4 * sizeof(double);
+  } else if constexpr (is_vector<T>::value || std::is_same_v<T, std::string>) {
+    return sizeof(std::uint64_t);
+  } else if constexpr (is_array<T>::value) {
+    return std::tuple_size_v<T> * min_bytes<typename T::value_type>();
+  } else if constexpr (is_pair<T>::value) {
+    return min_bytes<typename T::first_type>() + min_bytes<typename T::second_type>();
+  } else if constexpr (is_variant<T>::value) {
+    return sizeof(std::uint32_t);
+  } else {
+    return 1;
+  }
+}
+
 /// Reads (Reading = true) or writes every item given to it.
 template <bool Reading>
 class Archive {
@@ -120,7 +145,12 @@ public:
 
   template <class T>
   void item(T& x) {
-    if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+    if constexpr (std::is_same_v<T, bool> && Reading) {
+      unsigned char b = 0; // a byte other than 0 or 1 is no bool
+      raw(b);
+      if (b > 1) corrupt("a truth value of " + std::to_string(b));
+      x = b == 1;
+    } else if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
       raw(x);
     } else if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>) {
       static_assert(T::SizeAtCompileTime > 0, "checkpoint: fixed-size Eigen types only");
@@ -133,19 +163,28 @@ public:
       std::uint64_t n = x.size();
       raw(n);
       if constexpr (Reading) {
-        check_size(n, 1);
+        check_size(n,
+                   std::is_same_v<T, std::vector<bool>> ? 1 : min_bytes<typename T::value_type>());
+        if (depth_ == 0 && per_particle_ > 0) {
+          --per_particle_;
+          if (n != particles_)
+            corrupt("a per-particle array of " + std::to_string(n) + " entries for " +
+                    std::to_string(particles_) + " particles");
+        }
         x.resize(n);
       }
+      ++depth_;
       if constexpr (std::is_same_v<T, std::vector<bool>>) {
         for (std::size_t k = 0; k < x.size(); ++k) {
           bool b = x[k];
-          raw(b);
+          item(b);
           x[k] = b;
         }
       } else {
         for (auto& e : x)
           item(e);
       }
+      --depth_;
     } else if constexpr (is_array<T>::value) {
       for (auto& e : x)
         item(e);
@@ -181,6 +220,13 @@ public:
 
   const std::string& path() const { return path_; }
 
+  /// Reading: the next `arrays` vectors read at the top level hold one entry per particle, and
+  /// there are `particles` particles (a length that differs is corrupt).
+  void expect_per_particle(std::size_t arrays, std::uint64_t particles) {
+    per_particle_ = arrays;
+    particles_ = particles;
+  }
+
 private:
   template <class T, std::size_t... I>
   static void emplace(T& x, std::size_t k, std::index_sequence<I...>) {
@@ -211,12 +257,15 @@ private:
     s_.seekg(0, std::ios::end);
     const auto end = s_.tellg();
     s_.seekg(here);
-    if (here < 0 || end < here || n * each > static_cast<std::uint64_t>(end - here))
+    if (here < 0 || end < here || n > static_cast<std::uint64_t>(end - here) / each)
       corrupt("a length of " + std::to_string(n));
   }
 
   Stream& s_;
   std::string path_;
+  int depth_ = 0;                ///< vectors being read around the current item
+  std::size_t per_particle_ = 0; ///< top-level vectors still to come with one entry per particle
+  std::uint64_t particles_ = 0;
 };
 
 /// The number of user stages and the sizes of the per-particle fields of a simulation type
@@ -252,6 +301,48 @@ inline std::vector<double> material_numbers(const std::vector<Material>& ms) {
              {m.density, m.young, m.poisson, m.shear, m.young_real, m.restitution, m.friction,
               m.friction_static, m.rolling_friction, m.conductivity, m.heat_capacity});
   return v;
+}
+
+/// The number of per-particle fields of a simulation type.
+template <class... F>
+constexpr std::size_t count_fields(grain::fields<F...>) {
+  return sizeof...(F);
+}
+
+/// Checks what a loaded state indexes with (materials, the neighbour list and its histories)
+/// against the sizes it indexes into; a corrupt file fails here rather than in a later step.
+template <class Sim, class Ar>
+void check_loaded(const Sim& sim, const Ar& ar) {
+  const std::size_t n = sim.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (sim.particles().material[i] >= sim.materials().size())
+      ar.corrupt("material " + std::to_string(sim.particles().material[i]) + " of particle " +
+                 std::to_string(i) + " (" + std::to_string(sim.materials().size()) + " materials)");
+  const NeighborList& list = sim.neighbor_list();
+  // rows of entries: n + 1 offsets from 0, never decreasing, to the number of entries
+  const auto rows = [&](const std::vector<std::uint32_t>& offsets, std::size_t entries,
+                        const char* what) {
+    bool ok = offsets.size() == n + 1 && offsets[0] == 0 && offsets[n] == entries;
+    for (std::size_t i = 0; ok && i < n; ++i)
+      ok = offsets[i] <= offsets[i + 1];
+    if (!ok) ar.corrupt(std::string("the rows of the neighbour list's ") + what);
+  };
+  rows(list.offsets, list.partners.size(), "particle pairs");
+  rows(list.wall_offsets, list.walls.size(), "particle-wall pairs");
+  try {
+    search::require_valid_list(list, n, "checkpoint");
+  } catch (const InputError&) {
+    ar.corrupt("the neighbour list");
+  }
+  for (const auto w : list.walls)
+    if (w >= sim.walls().size())
+      ar.corrupt("wall " + std::to_string(w) + " of the neighbour list (" +
+                 std::to_string(sim.walls().size()) + " walls)");
+  const std::size_t histories =
+      ContactHistories<typename Sim::History>::stateless ? 0 : list.partners.size();
+  if (sim.histories().size() != histories)
+    ar.corrupt("a number of contact histories of " + std::to_string(sim.histories().size()) +
+               " for " + std::to_string(list.partners.size()) + " pair entries");
 }
 
 inline constexpr char magic[8] = {'G', 'R', 'A', 'I', 'N', 'C', 'K', 'P'};
@@ -339,9 +430,15 @@ void load_checkpoint(Sim& sim, const std::string& path) {
   // state in memory, which loses the loads of the last step on walls and removals requested
   // since it).
   auto read = [&] {
+    // Simulation::serialize reads the particle arrays first: id, position, velocity, omega,
+    // orientation, force, torque, radius, mass, inv_mass, inertia, inv_inertia and material
+    // (13), the 4 thermal ones, then one per field
+    ar.expect_per_particle(
+        13 + (Sim::thermal ? 4 : 0) + detail::count_fields(typename Sim::FieldList{}), particles);
     sim.serialize(ar);
     ar(m);
     if (std::memcmp(m, detail::end_mark, 8) != 0) ar.corrupt("the end mark");
+    detail::check_loaded(sim, ar);
   };
   if constexpr (std::is_copy_assignable_v<Sim> && std::is_copy_constructible_v<Sim>) {
     Sim before(sim);
@@ -365,7 +462,6 @@ void load_checkpoint(Sim& sim, const std::string& path) {
       throw;
     }
   }
-  (void)particles;
 }
 
 /// An observer that writes a checkpoint each time it is called (use with io::every).

@@ -641,7 +641,9 @@ private:
       int n = 0;
       const auto [end, err] = std::from_chars(last.data() + std::min(digits, last.size()),
                                               last.data() + last.size(), n);
-      if (err == std::errc{} && std::string_view(end, last.data() + last.size()) == ".vtk")
+      // a number of its own (>= 0), of which the next one is an int too
+      if (err == std::errc{} && std::string_view(end, last.data() + last.size()) == ".vtk" &&
+          last.rfind(stem + "_particles_", 0) == 0 && n >= 0 && n < std::numeric_limits<int>::max())
         count = n + 1;
     }
   }
