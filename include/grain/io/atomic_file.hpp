@@ -32,39 +32,6 @@
 
 namespace grain::io::detail {
 
-/// A file buffer that keeps the errno of its first failed write (the stream that uses it only
-/// sets its badbit, and errno may have changed by the time the failure is noticed).
-class FileBuffer : public std::filebuf {
-public:
-  int error() const { return error_; }
-
-protected:
-  int_type overflow(int_type c) override {
-    errno = 0;
-    const int_type r = std::filebuf::overflow(c);
-    if (traits_type::eq_int_type(r, traits_type::eof())) note();
-    return r;
-  }
-  std::streamsize xsputn(const char_type* s, std::streamsize n) override {
-    errno = 0;
-    const std::streamsize r = std::filebuf::xsputn(s, n);
-    if (r < n) note();
-    return r;
-  }
-  int sync() override {
-    errno = 0;
-    const int r = std::filebuf::sync();
-    if (r != 0) note();
-    return r;
-  }
-
-private:
-  void note() {
-    if (error_ == 0) error_ = errno;
-  }
-  int error_ = 0;
-};
-
 /// A whole file written under `<path>.tmp` and renamed to `<path>` by commit(); removed unless
 /// committed.
 class AtomicFile {
@@ -107,9 +74,15 @@ public:
   /// Flushes and closes the temporary file and renames it over the final one; throws WriteError
   /// (after removing the temporary file) if any byte did not reach it or the rename failed.
   void commit() {
+    // a write that failed earlier left the stream bad and did nothing since: its error number
+    int err = out_ ? 0 : errno;
+    errno = 0;
     if (out_) out_.flush();
+    if (!out_ && err == 0) err = errno;
+    errno = 0;
     const bool closed = buf_.close() != nullptr;
-    if (!out_ || !closed) fail(0);
+    if (!closed && err == 0) err = errno;
+    if (!out_ || !closed) fail(err);
     if (!direct_) {
       std::error_code ec;
       std::filesystem::rename(tmp_, final_, ec);
@@ -118,10 +91,8 @@ public:
     done_ = true;
   }
 
-  /// Removes the temporary file and throws WriteError for the error number of the first failed
-  /// write, else `err`.
+  /// Removes the temporary file and throws WriteError for the error number `err`.
   [[noreturn]] void fail(int err) {
-    if (buf_.error() != 0) err = buf_.error();
     discard();
     if (direct_) throw write_error(who_, path_, err);
     throw WriteError(who_ + ": cannot write '" + tmp_ + "', the temporary file of '" + path_ +
@@ -141,7 +112,7 @@ private:
 
   std::string who_, path_, final_{}, tmp_{};
   bool direct_ = false, done_ = false;
-  FileBuffer buf_{};
+  std::filebuf buf_{};
   std::ostream out_{&buf_};
 };
 
