@@ -14,17 +14,14 @@
 
 namespace grain_fuzz {
 
-/// A folder of its own for this process, made on first use (under $TMPDIR or the system's
-/// temporary folder) and removed at exit.
+/// A folder of its own for this process, made on first use under $TMPDIR (or the system's
+/// temporary folder). libFuzzer ends a run without the handlers of atexit, so the folder stays:
+/// scripts/fuzz.sh sets TMPDIR to a folder below its build folder.
 inline const std::filesystem::path& scratch() {
   static const std::filesystem::path dir = [] {
     auto d = std::filesystem::temp_directory_path() /
              ("grain_fuzz_" + std::to_string(static_cast<long>(::getpid())));
     std::filesystem::create_directories(d);
-    std::atexit([] {
-      std::error_code ignored;
-      std::filesystem::remove_all(scratch(), ignored);
-    });
     return d;
   }();
   return dir;

@@ -59,6 +59,11 @@ for t in "${targets[@]}"; do
   fi
 done
 
+# the targets' scratch files (fuzz_support.hpp) go below the build folder, where a run that ends
+# in a crash leaves them
+mkdir -p "$build/tmp"
+TMPDIR="$(cd "$build/tmp" && pwd)"
+export TMPDIR
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 status=0
