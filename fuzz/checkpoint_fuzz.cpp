@@ -39,6 +39,7 @@ S make() {
   typename S::Params prm;
   prm.time_step = 2e-6;
   prm.gravity = Vec3(0, 0, -9.81);
+  prm.max_start_overlap = 0.25; // the pile starts up to 0.17 R into itself
   S sim(prm);
   Material m;
   m.density = 2500;

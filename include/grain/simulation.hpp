@@ -488,6 +488,7 @@ public:
   void steps(long n, Observers&&... obs) {
     require(n >= 0, "Simulation::steps", "n", n, "[0, inf)");
     if (!initialized_) initialize();
+    if (start_limits_.empty()) start_limits_ = Check::limits_text(*this); // after a load
     (detail::start_observer(obs, *this), ...);
     for (long k = 0; k < n; ++k) {
       if constexpr (sizeof...(Observers) == 0) {
@@ -562,7 +563,7 @@ public:
       life_.removal_requests.clear(); // the state read is complete
       fresh_ids_.clear();             // a continued state, not a start
       checked_walls_ = walls_.size();
-      if (initialized_) start_limits_ = Check::limits_text(*this);
+      start_limits_.clear(); // computed by the next run, once the loaded state is checked
       groups_dirty_ = true;
       if (vprops_.per_particle && initialized_) Neighbours::refresh_pair_cache(*this);
     }

@@ -382,6 +382,7 @@ using ThermalContact =
 void disks(const std::filesystem::path& dir, std::string& runs, std::string& series, bool& ok) {
   grain::SimulationParams<2, Contact, grain::search::AllPairs> params;
   params.gravity = grain::Vec2(0.0, -9.81);
+  params.max_start_overlap = std::numeric_limits<double>::infinity(); // a random pile
   grain::Simulation<grain::Disk, grain::search::AllPairs, Contact> sim(params,
                                                                        grain::Disk{0.01, false});
   const auto m = sim.add_material(material());
@@ -436,6 +437,7 @@ void disks(const std::filesystem::path& dir, std::string& runs, std::string& ser
 void spheres(const std::filesystem::path& dir, std::string& runs, std::string& series, bool& ok) {
   grain::Simulation<grain::Sphere, grain::search::CellList, ThermalContact>::Params params;
   params.gravity = grain::Vec3(0.0, 0.0, -9.81);
+  params.max_start_overlap = std::numeric_limits<double>::infinity();
   params.initial_temperature = 310.0;
   grain::Simulation<grain::Sphere, grain::search::CellList, ThermalContact> sim(params);
   grain::Material mat = material();

@@ -102,7 +102,9 @@ TEST_CASE("dissipation: global damping takes the kinetic energy of a free sphere
 TEST_CASE("dissipation: friction takes 2/7 of the energy of a sphere that starts to roll") {
   using Sim = Simulation<Sphere, search::CellList, presets::LinearCoulomb>;
   const double g = 9.81;
-  Sim sim(tracked<Sim>(2e-6, Vec3(0, 0, -g)));
+  auto prm = tracked<Sim>(2e-6, Vec3(0, 0, -g));
+  prm.max_start_overlap = 0.1; // the pile starts 0.06 R into a wall
+  Sim sim(prm);
   Material mat = soft();
   mat.friction = 0.3;
   mat.restitution = 0.2;
@@ -125,7 +127,9 @@ TEST_CASE("dissipation: a settling packing conserves kinetic + potential + elast
           "energy") {
   using Sim = Simulation<Sphere, search::CellList, presets::HertzMindlinRolling>;
   const double g = 9.81;
-  Sim sim(tracked<Sim>(2e-6, Vec3(0, 0, -g)));
+  auto prm = tracked<Sim>(2e-6, Vec3(0, 0, -g));
+  prm.max_start_overlap = 0.1; // the pile starts 0.06 R into a wall
+  Sim sim(prm);
   Material mat = soft();
   mat.friction = 0.5;
   mat.rolling_friction = 0.05;

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <grain/grain.hpp>
 #include <grain/io/checkpoint.hpp>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -159,6 +160,7 @@ TEST_CASE("fields: follow their particles through sorting, removal, creation and
   using Sim = Simulation<Disk, search::CellList, Contact2, fields<Owner>, stages<Ageing>>;
   Sim::Params prm;
   prm.gravity = Vec2(0, -9.81);
+  prm.max_start_overlap = std::numeric_limits<double>::infinity(); // a random, overlapping pile
   Sim sim(prm, Disk{.sphere_mass = true});
   const auto m = sim.add_material(glass);
   const double L = 0.03;
@@ -323,7 +325,8 @@ TEST_CASE("wall loads and the servo stage: a bed pressed to a target stress") {
 TEST_CASE("contact frame: orthonormal, right-handed, and local components rebuild the force") {
   using Sim = Simulation<Sphere, search::CellList, Contact3>;
   Sim::Params prm;
-  prm.gravity = Vec3(0, 0, -100.0); // settles in 0.03 s
+  prm.gravity = Vec3(0, 0, -100.0);                                // settles in 0.03 s
+  prm.max_start_overlap = std::numeric_limits<double>::infinity(); // a random, overlapping pile
   Sim sim(prm);
   const auto m = sim.add_material(glass);
   const double L = 0.01;
