@@ -68,6 +68,17 @@ struct InvalidModel {
 template <class H, int I>
 struct Tagged : H {};
 
+/// False if the bytes of a history slot read from a file are not a history of its model (a
+/// model whose history holds a truth value or an enumeration says which are, with a static
+/// `valid_bytes`; any bytes are a history of the others).
+template <class H, int I>
+bool valid_bytes(const Tagged<H, I>& h) {
+  if constexpr (requires { H::valid_bytes(h); })
+    return H::valid_bytes(h);
+  else
+    return true;
+}
+
 /// `p` with the per-pair constants of model M worked out (M::resolve, if M has one).
 template <class M>
 void resolve_model(typename M::Params& p, const PairProperties& pair) {
@@ -137,6 +148,13 @@ struct Interaction {
     [[no_unique_address]] detail::Tagged<typename conduction_model::template History<D>, 3>
         conduction;
     [[no_unique_address]] detail::Tagged<typename area_model::template History<D>, 4> area;
+
+    /// False if these bytes (read from a checkpoint) are not a history of the models.
+    static bool valid_bytes(const History& h) {
+      return detail::valid_bytes(h.normal) && detail::valid_bytes(h.tangent) &&
+             detail::valid_bytes(h.rolling) && detail::valid_bytes(h.conduction) &&
+             detail::valid_bytes(h.area);
+    }
   };
 
   /// True if no model keeps per-contact state (no history array is allocated).

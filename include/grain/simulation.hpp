@@ -556,6 +556,13 @@ public:
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
+      // what later steps index with or divide by: a corrupt file fails here, not in a step
+      if (const std::string bad = Check::loaded(*this); !bad.empty()) {
+        if constexpr (requires { ar.corrupt(bad); })
+          ar.corrupt(bad);
+        else
+          throw InputError("Simulation: the state read has " + bad + ", which is invalid");
+      }
       Pass::find_fixed(*this);
       interrupted_ = false; // a checkpoint holds whole steps
       wall_loads_.clear(list_.walls.size());

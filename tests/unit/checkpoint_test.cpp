@@ -7,8 +7,10 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -278,4 +280,79 @@ TEST_CASE("checkpoint: corrupt contents are rejected before the simulation takes
                          doctest::Contains("a truth value of 2"), InputError);
   }
   CHECK_FALSE(b.initialized()); // each failed load leaves b as it was
+}
+
+namespace {
+/// An archive that reads nothing: it hands each item of a state to `edit`, which puts into it
+/// a value a corrupt file could hold.
+template <class F>
+struct EditArchive {
+  static constexpr bool reading = true;
+  F edit;
+  template <class... T>
+  void operator()(T&... items) {
+    (edit(items), ...);
+  }
+};
+template <class F>
+EditArchive<F> edit_archive(F f) {
+  return {std::move(f)};
+}
+} // namespace
+
+TEST_CASE("checkpoint: a state read that a step cannot run is refused, not run") {
+  Sim a = make<Sim>();
+  a.run(0.001);
+  REQUIRE(a.histories().size() > 0);
+  SUBCASE("a contact history whose sliding flag is neither 0 nor 1") {
+    // any bytes fill a history; the truth value of the stick-slip models is checked
+    auto ar = edit_archive([](auto& x) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::vector<Sim::History>>)
+        if (!x.empty()) std::memset(&x.front().tangent.sliding, 2, 1);
+    });
+    CHECK_THROWS_WITH_AS(a.serialize(ar), doctest::Contains("the state read has a contact history"),
+                         InputError);
+  }
+  SUBCASE("step counters that would overflow the time") {
+    auto ar = edit_archive([](auto& x) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, long>)
+        x = std::numeric_limits<long>::min();
+    });
+    CHECK_THROWS_WITH_AS(a.serialize(ar), doctest::Contains("the step counters"), InputError);
+  }
+  SUBCASE("a negative radius") {
+    auto radius = edit_archive([](auto& x) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::vector<double>>)
+        if (!x.empty() && x.front() == 0.01) x.front() = -0.01; // the first radius
+    });
+    CHECK_THROWS_WITH_AS(a.serialize(radius), doctest::Contains("the radius -0.01 m of particle 0"),
+                         InputError);
+  }
+  SUBCASE("a repeated particle id") {
+    bool first = true;
+    auto ids = edit_archive([&](auto& x) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::vector<std::int64_t>>)
+        if (first && x.size() > 1) {
+          x[1] = x[0];
+          first = false;
+        }
+    });
+    CHECK_THROWS_WITH_AS(a.serialize(ids), doctest::Contains("a repeated particle id"), InputError);
+  }
+}
+
+TEST_CASE("the search survives particles at the ends of the doubles") {
+  // an extent beyond the largest double must neither hang the grid nor overflow a cell index
+  Simulation<Sphere, search::CellList, presets::LinearCoulomb> sim({.time_step = 1e-6});
+  Material m;
+  m.density = 2500;
+  m.young = 1e7;
+  const auto k = sim.add_material(m);
+  sim.add_particle({.position = {-1e308, 0, 0}, .radius = 0.01, .material = k});
+  sim.add_particle({.position = {1e308, 0, 0}, .radius = 0.01, .material = k});
+  sim.add_particle({.position = {0, 0, 0}, .radius = 0.01, .material = k});
+  sim.add_particle({.position = {0.0199, 0, 0}, .radius = 0.01, .material = k});
+  sim.steps(3);
+  CHECK(sim.neighbor_list().partners.size() >= 1);           // the touching pair is listed
+  CHECK(sim.particles().velocity[sim.index_of(3)][0] > 0.0); // and pushed apart
 }

@@ -1,4 +1,5 @@
 // Neighbour searches: same contact set as brute force, and no contact ever detected late.
+#include "../errors.hpp"
 #include <algorithm>
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
@@ -279,4 +280,22 @@ TEST_CASE("cell order sorts by cell and keeps the order of the particles within 
     }
   }
   CHECK(ties > static_cast<int>(p.size()) / 2); // the test has cells with several particles
+}
+
+TEST_CASE("a neighbour list whose offsets run backwards or past its entries is refused") {
+  // row 0 claims 5 entries of a list of 1: every offset is checked before any row is read
+  NeighborList list;
+  list.offsets = {0, 5, 1};
+  list.partners = {1};
+  list.wall_offsets = {0, 0, 0};
+  list.max_span = 1;
+  const auto msg = test::error_of([&] { search::require_valid_list(list, 2, "mine"); });
+  CHECK(
+      test::has(msg, "search 'mine': the neighbour list it built has decreasing offsets at row 1"));
+  list.offsets = {0, 1, 1};
+  list.wall_offsets = {0, 3, 0};
+  CHECK(test::has(test::error_of([&] { search::require_valid_list(list, 2, "mine"); }),
+                  "decreasing offsets at row 1"));
+  list.wall_offsets = {0, 0, 0};
+  CHECK_NOTHROW(search::require_valid_list(list, 2, "mine"));
 }

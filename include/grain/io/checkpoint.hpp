@@ -309,42 +309,6 @@ constexpr std::size_t count_fields(grain::fields<F...>) {
   return sizeof...(F);
 }
 
-/// Checks what a loaded state indexes with (materials, the neighbour list and its histories)
-/// against the sizes it indexes into; a corrupt file fails here rather than in a later step.
-template <class Sim, class Ar>
-void check_loaded(const Sim& sim, const Ar& ar) {
-  const std::size_t n = sim.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if (sim.particles().material[i] >= sim.materials().size())
-      ar.corrupt("material " + std::to_string(sim.particles().material[i]) + " of particle " +
-                 std::to_string(i) + " (" + std::to_string(sim.materials().size()) + " materials)");
-  const NeighborList& list = sim.neighbor_list();
-  // rows of entries: n + 1 offsets from 0, never decreasing, to the number of entries
-  const auto rows = [&](const std::vector<std::uint32_t>& offsets, std::size_t entries,
-                        const char* what) {
-    bool ok = offsets.size() == n + 1 && offsets[0] == 0 && offsets[n] == entries;
-    for (std::size_t i = 0; ok && i < n; ++i)
-      ok = offsets[i] <= offsets[i + 1];
-    if (!ok) ar.corrupt(std::string("the rows of the neighbour list's ") + what);
-  };
-  rows(list.offsets, list.partners.size(), "particle pairs");
-  rows(list.wall_offsets, list.walls.size(), "particle-wall pairs");
-  try {
-    search::require_valid_list(list, n, "checkpoint");
-  } catch (const InputError&) {
-    ar.corrupt("the neighbour list");
-  }
-  for (const auto w : list.walls)
-    if (w >= sim.walls().size())
-      ar.corrupt("wall " + std::to_string(w) + " of the neighbour list (" +
-                 std::to_string(sim.walls().size()) + " walls)");
-  const std::size_t histories =
-      ContactHistories<typename Sim::History>::stateless ? 0 : list.partners.size();
-  if (sim.histories().size() != histories)
-    ar.corrupt("a number of contact histories of " + std::to_string(sim.histories().size()) +
-               " for " + std::to_string(list.partners.size()) + " pair entries");
-}
-
 inline constexpr char magic[8] = {'G', 'R', 'A', 'I', 'N', 'C', 'K', 'P'};
 inline constexpr char end_mark[8] = {'G', 'R', 'A', 'I', 'N', 'E', 'N', 'D'};
 
@@ -438,7 +402,6 @@ void load_checkpoint(Sim& sim, const std::string& path) {
     sim.serialize(ar);
     ar(m);
     if (std::memcmp(m, detail::end_mark, 8) != 0) ar.corrupt("the end mark");
-    detail::check_loaded(sim, ar);
   };
   if constexpr (std::is_copy_assignable_v<Sim> && std::is_copy_constructible_v<Sim>) {
     Sim before(sim);

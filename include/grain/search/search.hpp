@@ -170,9 +170,11 @@ inline void require_valid_list(const NeighborList& list, std::size_t n, const ch
   if (list.offsets[0] != 0 || list.offsets[n] != list.partners.size() ||
       list.wall_offsets[0] != 0 || list.wall_offsets[n] != list.walls.size())
     fail("has offsets that do not cover its entries");
-  for (std::size_t i = 0; i < n; ++i) {
+  // all offsets first: ascending up to the ends checked above, no row reaches past its array
+  for (std::size_t i = 0; i < n; ++i)
     if (list.offsets[i + 1] < list.offsets[i] || list.wall_offsets[i + 1] < list.wall_offsets[i])
       fail("has decreasing offsets at row " + std::to_string(i));
+  for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t prev = static_cast<std::uint32_t>(i);
     for (const auto e : list.pair_entries(i)) {
       const auto j = list.partners[e];
@@ -216,8 +218,10 @@ struct Grid {
       for (int d = 0; d < D; ++d) {
         // at most 1e15 cells along an axis before the cast (a stray particle far away must not
         // overflow the integer; the loop then coarsens the grid)
-        dims[d] = std::max<long>(
-            1, static_cast<long>(std::min(std::floor((mx[d] - mn[d]) / cell), 1e15)) + 1);
+        // (an extent beyond the largest double, from particles near +-1e308, is taken as it)
+        const double extent = std::min(mx[d] - mn[d], std::numeric_limits<double>::max());
+        dims[d] =
+            std::max<long>(1, static_cast<long>(std::min(std::floor(extent / cell), 1e15)) + 1);
         total *= static_cast<double>(dims[d]);
       }
       if (total <= max_cells) break;
@@ -230,9 +234,11 @@ struct Grid {
       sorted[k] = dims[axis[k]];
   }
   long coord(const Vec<D>& p, int d) const {
-    // clamped before the cast: a particle outside the grid takes the nearest cell
-    return static_cast<long>(
-        std::clamp((p[d] - lo[d]) / cell, 0.0, static_cast<double>(dims[d] - 1)));
+    // clamped before the cast: a particle outside the grid takes the nearest cell (and one
+    // whose offset is not a number, inf / inf, the first)
+    const double c = (p[d] - lo[d]) / cell;
+    if (!(c > 0.0)) return 0;
+    return c < static_cast<double>(dims[d] - 1) ? static_cast<long>(c) : dims[d] - 1;
   }
   long index(const Vec<D>& p) const {
     long c = coord(p, axis[D - 1]);

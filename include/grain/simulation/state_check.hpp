@@ -21,6 +21,7 @@
 /// which declares it a friend.
 
 #include <grain/core/error.hpp>
+#include <grain/search/search.hpp>
 #include <grain/simulation/components.hpp>
 
 #include <algorithm>
@@ -147,6 +148,91 @@ struct StateCheck {
     s.checked_walls_ = s.walls_.size();
   }
 
+  /// What is wrong with a run state just read (from a checkpoint): "" if it can be run, else the
+  /// first item that cannot, for the reader's message. Checks what later steps index with or
+  /// divide by, so that a corrupt file fails at the load and not in a step: particle values
+  /// finite, radii, masses and inertias positive, materials, unique ids below the next id, the
+  /// run counters, the neighbour list with its histories (contact histories whose bytes are not a
+  /// history of the models, a truth value of 2 say), the stored conductances and the particles
+  /// waiting for their creation time.
+  static std::string loaded(const Sim& s) {
+    const auto& p = s.particles_;
+    const std::size_t n = p.size(), materials = s.materials().size();
+    auto num = [](double x) { return detail::to_text(x); };
+    auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+    auto non_negative = [](double x) { return std::isfinite(x) && x >= 0.0; };
+    if (s.step_ < 0 || s.step0_ < 0 || s.step0_ > s.step_ || s.steps_since_rebuild_ < 0 ||
+        s.steps_since_cells_ < 0)
+      return "the step counters (step " + std::to_string(s.step_) + ", start " +
+             std::to_string(s.step0_) + ")";
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string who = "particle " + std::to_string(i);
+      if (!(p.position[i].allFinite() && finite(p.velocity[i]) && finite(p.omega[i]) &&
+            finite(p.force[i]) && finite(p.torque[i]) && finite_orientation(p.orientation[i])))
+        return "a value of " + who + " that is not finite";
+      if (!positive(p.radius[i])) return "the radius " + num(p.radius[i]) + " m of " + who;
+      if (!non_negative(p.mass[i]) || !non_negative(p.inv_mass[i]) || !non_negative(p.inertia[i]) ||
+          !non_negative(p.inv_inertia[i]))
+        return "the mass or inertia of " + who;
+      if (p.material[i] >= materials)
+        return "material " + std::to_string(p.material[i]) + " of " + who + " (" +
+               std::to_string(materials) + " materials)";
+      if (p.id[i] < 0 || p.id[i] >= s.next_id_)
+        return "id " + std::to_string(p.id[i]) + " of " + who + " (next id " +
+               std::to_string(s.next_id_) + ")";
+      if constexpr (thermal)
+        if (!std::isfinite(p.temperature[i]) || !std::isfinite(p.heat_rate[i]) ||
+            !non_negative(p.heat_capacity[i]) || !non_negative(p.inv_heat_capacity[i]))
+          return "a thermal value of " + who;
+    }
+    std::vector<std::int64_t> ids(p.id.begin(), p.id.end());
+    std::sort(ids.begin(), ids.end());
+    if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) return "a repeated particle id";
+    if (s.initialized_ && !positive(s.dt_)) return "the time step " + num(s.dt_) + " s";
+    if (!std::isfinite(s.time_) || !std::isfinite(s.time_offset_) || std::isnan(s.end_time_))
+      return "the time " + num(s.time_) + " s";
+    if (!non_negative(s.r_max_) || !non_negative(s.skin_) || !non_negative(s.reach_) ||
+        !non_negative(s.cutoff_))
+      return "the search distances (skin " + num(s.skin_) + " m)";
+    if (s.initialized_ && s.snapshot_.size() != n)
+      return "the positions of the last rebuild (" + std::to_string(s.snapshot_.size()) + " for " +
+             std::to_string(n) + " particles)";
+    // the list has a row per particle once started; before (particles added since) a row for
+    // each particle it was built with, the first ones
+    const std::size_t rows = s.list_.offsets.empty() ? 0 : s.list_.rows();
+    if (s.list_.offsets.empty() || (s.initialized_ ? rows != n : rows > n))
+      return "the neighbour list (" + std::to_string(s.list_.offsets.size()) + " offsets for " +
+             std::to_string(n) + " particles)";
+    try {
+      search::require_valid_list(s.list_, rows, "checkpoint");
+    } catch (const InputError&) {
+      return "the neighbour list";
+    }
+    for (const auto w : s.list_.walls)
+      if (w >= s.walls_.size()) return "wall " + std::to_string(w) + " of the neighbour list";
+    using Histories = typename Sim::Histories;
+    if constexpr (!Histories::stateless) {
+      if (s.hist_.pair.size() != s.list_.partners.size() ||
+          s.hist_.wall.size() != s.list_.walls.size())
+        return "the number of contact histories";
+      for (const auto* hist : {&s.hist_.pair, &s.hist_.wall})
+        for (const auto& h : *hist)
+          if (!valid_history(h)) return "a contact history";
+    }
+    for (const auto& c : s.static_pairs_)
+      if (c.i >= n || c.j >= n || !std::isfinite(c.conductance)) return "a stored conductance";
+    for (const auto& c : s.static_walls_)
+      if (c.i >= n || c.j >= s.walls_.size() || !std::isfinite(c.conductance))
+        return "a stored wall conductance";
+    for (const auto& spec : s.life_.pending)
+      if (!positive(spec.radius) || spec.material >= materials || !spec.position.allFinite() ||
+          std::isnan(spec.creation_time))
+        return "particle " + std::to_string(spec.id) + " waiting for its creation time";
+    for (const auto& [t, id] : s.life_.doomed)
+      if (std::isnan(t)) return "the destruction time of particle " + std::to_string(id);
+    return {};
+  }
+
   /// The stable limits at the start of the run, for the messages of a failed step (the
   /// conduction limit itself only if the step is above its bound; else the bound).
   static std::string limits_text(const Sim& s) {
@@ -170,6 +256,20 @@ private:
   static double magnitude(double w) { return std::abs(w); }
   static bool finite(const V& v) { return v.allFinite(); }
   static bool finite(double w) { return std::isfinite(w); }
+  static bool finite_orientation(double a) { return std::isfinite(a); }
+  template <class Q>
+  static bool finite_orientation(const Q& q) {
+    return q.coeffs().allFinite();
+  }
+  /// True unless the history's bytes are not a history of the models (a model says which
+  /// bytes are valid with a static `valid_bytes`, as one holding a truth value does).
+  template <class H>
+  static bool valid_history(const H& h) {
+    if constexpr (requires { H::valid_bytes(h); })
+      return H::valid_bytes(h);
+    else
+      return true;
+  }
 
   static bool sound(const Sim& s, std::size_t i, double dt) {
     const auto& p = s.particles_;

@@ -23,17 +23,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <grain/models/concepts.hpp>
 #include <numbers>
 #include <type_traits>
 
 namespace grain::tangent::detail {
 
+/// True if the byte of the bool at b is 0 or 1 (read as a byte: a bool holding any other byte
+/// may not even be read).
+inline bool truth_byte(const bool* b) {
+  unsigned char c;
+  std::memcpy(&c, b, 1);
+  return c <= 1;
+}
+
 /// History of a spring with a slider: elongation vector and the sliding state of the last step.
 template <int D>
 struct SpringHistory {
   PlainVec<D> spring{}; ///< elongation xi [m], in the tangent plane
   bool sliding = false; ///< true if the contact slid at the last step
+  /// False if the bytes of a history read from a file hold no truth value in `sliding`.
+  static bool valid_bytes(const SpringHistory& h) { return truth_byte(&h.sliding); }
 };
 
 /// History of a spring without slider (elongation vector only).
@@ -46,6 +57,8 @@ struct ElasticHistory {
 template <int D>
 struct SlipHistory {
   bool sliding = false; ///< true if the contact slid at the last step
+  /// False if the bytes of a history read from a file hold no truth value in `sliding`.
+  static bool valid_bytes(const SlipHistory& h) { return truth_byte(&h.sliding); }
 };
 
 /// Static friction coefficient of a pair (never below the dynamic one).
