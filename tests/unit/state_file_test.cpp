@@ -3,7 +3,7 @@
 // one it was written from, and bad files are refused with messages naming the file, the line and
 // the value.
 
-#include "errors.hpp"
+#include "../errors.hpp"
 
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
