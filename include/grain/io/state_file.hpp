@@ -399,7 +399,7 @@ public:
         continue;
       }
       if (const std::string why = split_state_cells(line, cells); !why.empty())
-        fail("line", "'" + shorten(line) + "'", "a line of comma-separated cells (" + why + ")");
+        fail("line", quote(line), "a line of comma-separated cells (" + why + ")");
       if (!header) {
         read_header(cells, line);
         header = true;
@@ -463,6 +463,13 @@ private:
   static std::string shorten(std::string_view s) {
     return s.size() <= 80 ? std::string(s) : std::string(s.substr(0, 77)) + "...";
   }
+  /// 's' (shortened), for messages.
+  static std::string quote(std::string_view s) {
+    std::string q = "'";
+    q += shorten(s);
+    q += '\'';
+    return q;
+  }
 
   /// Reads "# grain state, dim=3, time=..., step=..., particles=N"; returns N or -1.
   long comment(std::string_view rest, ParticleState<D>& state) {
@@ -475,7 +482,7 @@ private:
       if (eq == std::string_view::npos) continue;
       const std::string_view key = trim_state(item.substr(0, eq));
       const std::string_view value = trim_state(item.substr(eq + 1));
-      const std::string shown = "'" + shorten(value) + "'";
+      const std::string shown = quote(value);
       if (key == "dim") {
         int dim = 0;
         if (!parse_state_integer(value, dim) || dim != D)
@@ -524,14 +531,14 @@ private:
         if (name != known[k].name) continue;
         column = known[k];
         if (has_unit && unit != known[k].unit && !(*known[k].unit == 0 && unit == "-"))
-          fail("unit of column '" + cell + "'", "'" + std::string(unit) + "'",
+          fail("unit of column '" + cell + "'", quote(unit),
                *known[k].unit ? std::string(known[k].unit) + " (SI units)"
                               : std::string("none, '-' or '' (a number without unit)"));
-        if (found[k]++) fail("column", "'" + cell + "'", "a column named once (it is named twice)");
+        if (found[k]++) fail("column", quote(cell), "a column named once (it is named twice)");
       }
       for (const char* o : other)
         if (name == o)
-          fail("column", "'" + cell + "'",
+          fail("column", quote(cell),
                std::string("a column of a ") + (D == 3 ? "3D" : "2D") +
                    " state file (this column is of " + (D == 3 ? "2D" : "3D") + " files)");
       if (column.kind == StateColumn::temperature && (!thermal_ || !options_.temperatures))
@@ -555,7 +562,7 @@ private:
       std::string all;
       for (const auto& c : known)
         all += (all.empty() ? "" : ", ") + state_header(c);
-      fail("header", "'" + shorten(line) + "'",
+      fail("header", quote(line),
            "a header with the columns " + missing + " too (columns: " + all + "; x, y" +
                (D == 3 ? ", z" : "") +
                " and radius are required, a vector is given whole or not at all)");
@@ -567,7 +574,7 @@ private:
     const StateColumnName& col = columns_[c];
     if (col.kind == StateColumn::unknown) return;
     const std::string& head = header_text_[c];
-    const auto shown = [&] { return "'" + shorten(cell) + "'"; };
+    const auto shown = [&] { return quote(cell); };
     const auto number = [&](const char* range, auto ok) {
       double v = 0.0;
       if (!parse_state_double(cell, v) || !ok(v))
@@ -1063,7 +1070,8 @@ void write_state_csv(const Sim& sim, const std::string& path, const std::string&
   for (const auto& c : detail::state_columns<D>()) {
     if (c.kind == detail::StateColumn::temperature && !Sim::thermal) continue;
     if (c.kind == detail::StateColumn::groups && names.empty()) continue;
-    line += (c.kind == detail::StateColumn::id ? "" : ",") + detail::state_header(c);
+    if (c.kind != detail::StateColumn::id) line += ',';
+    line += detail::state_header(c);
   }
   line += '\n';
   detail::AtomicFile file(who, path);
