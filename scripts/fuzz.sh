@@ -31,6 +31,7 @@ targets=(${TARGETS:-$(cd fuzz && ls *_fuzz.cpp | sed 's/\.cpp$//')})
 max_len() {
   case "$1" in
     checkpoint_fuzz) echo 16384 ;;
+    state_csv_fuzz | state_vtk_fuzz) echo 4096 ;;
     *) echo 1024 ;;
   esac
 }

@@ -594,6 +594,15 @@ public:
   double end_time() const { return std::max(end_time_, time_); }
   double skin() const { return skin_; }
   const RunCounters& counters() const { return counters_; }
+  /// True if particle i (current index) is fixed (ParticleSpec::fixed): it moves with its
+  /// velocities whatever the forces, like a wall. Not a particle that a field marks as driven
+  /// (field_traits: a clump member, a particle moved by a rigid-body system), whose inverse mass
+  /// is 0 too, but which moves under its contact forces.
+  bool fixed_particle(std::size_t i) const {
+    if (particles_.inv_mass[i] != 0.0) return false;
+    return !std::apply(
+        [i](const auto&... f) { return (detail::field_driven(f[i]) || ... || false); }, fields_);
+  }
 
   // ---------------------------------------------------------------- stages and fields
   /// The object of user stage S (one of the grain::stages<...> option): set its parameters
@@ -676,16 +685,6 @@ private:
       return History{};
     else
       return h[e];
-  }
-
-  /// True if particle i is fixed (ParticleSpec::fixed): it moves with its velocities whatever the
-  /// forces, like a wall. Not a particle that a field marks as driven (field_traits: a clump
-  /// member, a particle moved by a rigid-body system), whose inverse mass is 0 too, but which
-  /// moves under its contact forces.
-  bool fixed_particle(std::size_t i) const {
-    if (particles_.inv_mass[i] != 0.0) return false;
-    return !std::apply(
-        [i](const auto&... f) { return (detail::field_driven(f[i]) || ... || false); }, fields_);
   }
 
   // ---------------------------------------------------------------- neighbours

@@ -5,5 +5,6 @@
 #include <grain/io/compare.hpp>
 #include <grain/io/console.hpp>
 #include <grain/io/csv.hpp>
+#include <grain/io/state_file.hpp>
 #include <grain/io/statistics.hpp>
 #include <grain/io/vtk.hpp>

@@ -77,6 +77,9 @@ public:
     const Sim& s = self();
     return s.cond_.groups[s.cond_.find(name)];
   }
+  /// Every group, in the order they were added: first the reserved group "all" (`everything`
+  /// set, no ids), then those of add_group.
+  const std::vector<Group>& groups() const { return self().cond_.groups; }
   /// Current indices of the active particles of a group.
   const std::vector<std::uint32_t>& group_indices(const std::string& name) const {
     const Sim& s = self();

@@ -179,6 +179,10 @@ struct LifecycleStep {
     ps.id = ps.id >= 0 ? ps.id : s.next_id_;
     const std::int64_t id = ps.id;
     const std::string obj = std::string(Shape::name) + " particle " + std::to_string(id);
+    // the next free id (id + 1) must exist
+    if (id == std::numeric_limits<std::int64_t>::max())
+      throw InputError(obj + ": id = " + std::to_string(id) + " is invalid; valid range: [0, " +
+                       std::to_string(id - 1) + "] (or -1 = next free id)");
     // ids below next_id_ may be taken (an id at or above it is new)
     if (id < s.next_id_ && (s.has_particle(id) || s.life_.was_removed(id)))
       throw InputError(obj + ": id = " + std::to_string(id) +
