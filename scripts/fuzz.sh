@@ -31,6 +31,7 @@ targets=(${TARGETS:-$(cd fuzz && ls *_fuzz.cpp | sed 's/\.cpp$//')})
 max_len() {
   case "$1" in
     checkpoint_fuzz) echo 16384 ;;
+    mesh_file_fuzz) echo 4096 ;; # a binary STL has 84 + 50 n bytes, a cube in ASCII about 2000
     *) echo 1024 ;;
   esac
 }
