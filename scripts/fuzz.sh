@@ -32,6 +32,7 @@ max_len() {
   case "$1" in
     checkpoint_fuzz) echo 16384 ;;
     state_csv_fuzz | state_vtk_fuzz) echo 4096 ;;
+    mesh_file_fuzz) echo 4096 ;; # a binary STL has 84 + 50 n bytes, a cube in ASCII about 2000
     *) echo 1024 ;;
   esac
 }
