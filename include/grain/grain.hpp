@@ -65,6 +65,7 @@
 #include <grain/particles/storage.hpp>
 #include <grain/presets.hpp>
 #include <grain/search/search.hpp>
+#include <grain/setup/generate.hpp>
 #include <grain/simulation.hpp>
 #include <grain/walls/facets.hpp>
 #include <grain/walls/obstacle.hpp>
