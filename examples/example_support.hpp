@@ -1,14 +1,18 @@
 #pragma once
 /// \file example_support.hpp
 /// What the example programs share: a portable random-number sequence, the command line
-/// "[end_time_s] [output_dir]" and calls of the plotting script.
+/// "[end_time_s] [output_dir]" and calls of the plotting script (scripts/grain_plot.py, installed
+/// as grain-plot).
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <system_error>
 
 namespace example {
 
@@ -41,19 +45,38 @@ inline bool parse_arguments(int argc, char** argv, const char* name, double& end
   return ok;
 }
 
-/// Runs scripts/grain_plot.py (its location is known at build time) with these arguments,
-/// quietly; false if it fails or if Python with matplotlib is missing.
+/// The file `name` in the first directory of the PATH environment variable that holds one; empty
+/// if none does.
+inline std::filesystem::path find_on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  const std::string dirs = path ? path : "";
+  for (std::size_t begin = 0; begin < dirs.size();) {
+    const std::size_t end = std::min(dirs.find(':', begin), dirs.size());
+    const std::filesystem::path candidate =
+        std::filesystem::path(dirs.substr(begin, end - begin)) / name;
+    std::error_code error;
+    if (end > begin && std::filesystem::is_regular_file(candidate, error)) return candidate;
+    begin = end + 1;
+  }
+  return {};
+}
+
+/// Runs the plotting script with these arguments, quietly: scripts/grain_plot.py of grain's
+/// source tree when the examples are built there (GRAIN_PLOT_SCRIPT, set by
+/// examples/CMakeLists.txt), else the installed grain-plot found on PATH (a copy of an example
+/// built elsewhere). False if it fails, if there is no script, or if Python with matplotlib is
+/// missing.
 inline bool plot(const std::string& args) {
 #ifdef GRAIN_PLOT_SCRIPT
+  const std::filesystem::path script = GRAIN_PLOT_SCRIPT;
+#else
+  const std::filesystem::path script = find_on_path("grain-plot");
+  if (script.empty()) return false;
+#endif
   const std::string python =
       std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string cmd =
-      python + " '" + std::string(GRAIN_PLOT_SCRIPT) + "' " + args + " > /dev/null 2>&1";
+  const std::string cmd = python + " '" + script.string() + "' " + args + " > /dev/null 2>&1";
   return std::system(cmd.c_str()) == 0;
-#else
-  (void)args;
-  return false;
-#endif
 }
 
 /// The last (in name order) file of `dir` whose name starts with `prefix`; empty if none.

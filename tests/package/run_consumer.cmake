@@ -3,7 +3,8 @@
 #       [-DCXX_COMPILER=...] [-DCXX_COMPILER_LAUNCHER=...] -P run_consumer.cmake
 #
 # find_package:     configures grain alone (tests, examples, benchmarks off), installs it into
-#                   WORK_DIR/prefix, then builds the consumer against that prefix only.
+#                   WORK_DIR/prefix, checks the files installed (headers, CMake package,
+#                   grain-plot, examples), then builds the consumer against that prefix only.
 # add_subdirectory: builds the consumer with grain's source tree added as a subdirectory.
 # Either way the consumer program is run and must exit with 0.
 cmake_minimum_required(VERSION 3.20)
@@ -50,7 +51,10 @@ if(MODE STREQUAL "find_package")
       -DGRAIN_BUILD_TESTS=OFF -DGRAIN_BUILD_EXAMPLES=OFF -DGRAIN_BUILD_BENCHMARKS=OFF)
   run("build grain" ${CMAKE_COMMAND} --build ${WORK_DIR}/grain-build)
   run("install grain" ${CMAKE_COMMAND} --install ${WORK_DIR}/grain-build)
-  foreach(f include/grain/grain.hpp include/grain/version.hpp)
+  # the headers, the plotting script as a command, and the examples with their headers
+  foreach(f include/grain/grain.hpp include/grain/version.hpp bin/grain-plot
+            share/grain/examples/example_support.hpp share/grain/examples/drum2d.cpp
+            share/grain/examples/servo_wall.hpp)
     if(NOT EXISTS ${prefix}/${f})
       message(FATAL_ERROR "not installed: ${f}")
     endif()
