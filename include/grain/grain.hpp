@@ -39,9 +39,12 @@
 #include <grain/models/convection/none.hpp>
 #include <grain/models/convection/ranz_marshall.hpp>
 #include <grain/models/convection/whitaker.hpp>
+#include <grain/models/normal/capillary.hpp>
+#include <grain/models/normal/dmt.hpp>
 #include <grain/models/normal/hertz.hpp>
 #include <grain/models/normal/hertz_damping.hpp>
 #include <grain/models/normal/hertz_equivalent.hpp>
+#include <grain/models/normal/jkr.hpp>
 #include <grain/models/normal/linear_spring_dashpot.hpp>
 #include <grain/models/normal/walton_braun.hpp>
 #include <grain/models/rolling/constant.hpp>

@@ -11,7 +11,9 @@
 ///    result into the contact radius a, the centre distance is made consistent with a, and the
 ///    conduction model returns the conductance H [W/K]; the heat rate into i is H (T_j - T_i).
 ///    Pairs that do not touch reach only `gap_conductance` (models that conduct across gaps).
-/// With `conduction::None` (the default) the simulation is purely mechanical.
+/// With `conduction::None` (the default) the simulation is purely mechanical. An adhesive normal
+/// model (`cohesive`) is also evaluated for listed pairs within its reach across a gap: there
+/// only the normal force acts; in contact, steps 2 and 3 see the load force + adhesion.
 ///
 /// The per-contact history is composed of the non-empty histories of the models in use only; for
 /// models without history it costs zero bytes, and it is trivially copyable (a checkpoint or a
@@ -123,6 +125,10 @@ struct Interaction {
   static constexpr bool has_torque = !std::is_same_v<tangent_model, tangent::None> ||
                                      !std::is_same_v<rolling_model, rolling::None>;
 
+  /// True if the normal model is adhesive (see `cohesive_model`): it may act across gaps up to
+  /// `reach`, and the tangential and rolling models see the load force + adhesion.
+  static constexpr bool cohesive = cohesive_model<normal_model>;
+
   /// True if the conduction model transfers heat (particles then carry temperatures).
   static constexpr bool thermal = conduction_model::thermal;
   /// True if heat also flows across gaps (the search then reaches `cutoff` beyond contact).
@@ -199,6 +205,24 @@ struct Interaction {
                                          const Params& p, History<D>& h, double dt) {
     Result<D> r;
     r.normal = normal_model::force(g, pair, p.normal, h.normal);
+    if constexpr (cohesive) {
+      if (!(g.overlap > 0.0)) { // across a gap: the normal force only
+        h.tangent = {};
+        h.rolling = {};
+        r.force = -r.normal.force * g.normal;
+        return r;
+      }
+      NormalResult load = r.normal; // the Coulomb limits see the load + adhesion
+      load.force += r.normal.adhesion;
+      r.tangent = tangent_model::force(g, pair, load, p.tangent, h.tangent, dt);
+      r.force = r.tangent.force - r.normal.force * g.normal;
+      if constexpr (has_torque) {
+        r.torque_i = cross(g.arm_i, r.tangent.force);
+        r.torque_j = cross(g.arm_j, Vec<D>(-r.tangent.force));
+        rolling_model::torque(g, pair, load, p.rolling, h.rolling, dt, r.torque_i, r.torque_j);
+      }
+      return r;
+    }
     r.tangent = tangent_model::force(g, pair, r.normal, p.tangent, h.tangent, dt);
     r.force = r.tangent.force - r.normal.force * g.normal;
     if constexpr (has_torque) {
@@ -251,6 +275,15 @@ struct Interaction {
     } else {
       return 0.0;
     }
+  }
+
+  /// Largest gap [m] across which the normal model acts on a pair of effective radius up to
+  /// `r_max` (0 unless it is cohesive).
+  static double reach(const Params& p, const PairProperties& pair, double r_max) {
+    if constexpr (cohesive)
+      return normal_model::reach(p.normal, pair, r_max);
+    else
+      return 0.0;
   }
 
   /// Largest gap [m] across which heat flows (0 unless the conduction model is indirect).

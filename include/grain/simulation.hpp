@@ -397,6 +397,7 @@ private:
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
     cutoff_ = heats() ? largest_cutoff() : 0.0;
+    gap_reach_ = largest_gap_reach();
   }
 
 public:
@@ -548,6 +549,7 @@ public:
     ar(list_.offsets, list_.partners, list_.wall_offsets, list_.walls, list_.max_span);
     ar(hist_.pair, hist_.wall, snapshot_);
     ar(dt_, time_, time_offset_, end_time_, r_max_, skin_, reach_, cutoff_, heat_on_);
+    if constexpr (Contact::cohesive) ar(gap_reach_);
     ar(static_pairs_, static_walls_, cell_pair_, cell_wall_, steps_since_cells_);
     ar(step_, steps_since_rebuild_, step0_, next_id_, gravity_now_);
     ar(vprops_.values[0], vprops_.values[1], vprops_.values[2], vprops_.values[3],
@@ -638,6 +640,19 @@ public:
   }
 
 private:
+  /// Largest gap across which an adhesive normal model acts over all pairs of materials, with an
+  /// effective radius up to the largest radius (a particle on a flat wall) [m]; 0 for the others.
+  double largest_gap_reach() const {
+    if constexpr (Contact::cohesive) {
+      double c = 0.0;
+      const auto& all = table_.all_parameters();
+      for (std::size_t k = 0; k < all.size(); ++k)
+        c = std::max(c, Contact::reach(all[k], table_.properties(k), r_max_));
+      return c;
+    } else {
+      return 0.0;
+    }
+  }
   /// Largest gap across which heat flows over all pairs of materials [m].
   double largest_cutoff() const {
     double c = Contact::cutoff(params_.contact, r_max_);
@@ -853,7 +868,8 @@ private:
   bool interrupted_ = false;
   double dt_ = 0.0, time_ = 0.0, time_offset_ = 0.0, end_time_ = 0.0;
   double r_max_ = 0.0, skin_ = 0.0, reach_ = 0.0;
-  double cutoff_ = 0.0; ///< largest gap across which heat flows [m]
+  double cutoff_ = 0.0;    ///< largest gap across which heat flows [m]
+  double gap_reach_ = 0.0; ///< largest gap across which an adhesive normal model acts [m]
   bool heat_on_ = false;
   /// A conducting pair of a static packing (thermal analysis): particles i and j (or wall j).
   struct StaticConductance {

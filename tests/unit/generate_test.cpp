@@ -12,6 +12,7 @@
 #include <grain/grain.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -238,6 +239,95 @@ TEST_CASE("generate: a cube mesh fills like the equal box, and its inside test i
         wrong += o8.contains(x) != (l1 < 1.0);
       }
   CHECK(wrong == 0);
+}
+
+TEST_CASE("generate: the inside test of a terraced mesh is exact at every step height") {
+  // A staircase of unit voxels of side 1/16 m (exact binary heights): column i (of 12) holds
+  // i + 1 voxels, 5 columns deep in y. Its flat treads lie at every height 1/16 .. 12/16 m, so
+  // some fall on the boundaries of the mesh's bucket grid, where a crossing height rounded below
+  // its tread lands in a cell that does not hold the triangle. The surface is made of the voxel
+  // faces that have no voxel beside them (two triangles each, outward), on shared vertices.
+  // 40 000 random points against the staircase's closed-form inside test; points within 1e-9 m
+  // of a face are skipped. Expected: no wrong answer.
+  const int nx = 12, ny = 5;
+  const double s = 1.0 / 16.0;
+  auto height = [](int i) { return i + 1; };
+  auto filled = [&](int i, int j, int k) {
+    return i >= 0 && i < nx && j >= 0 && j < ny && k >= 0 && k < height(i);
+  };
+  walls::TriangleMesh m;
+  std::vector<std::int64_t> index_of((nx + 1) * (ny + 1) * (nx + 2), -1);
+  auto vertex = [&](int i, int j, int k) {
+    auto& v = index_of[(k * (ny + 1) + j) * (nx + 1) + i];
+    if (v < 0) {
+      v = static_cast<std::int64_t>(m.vertices.size());
+      m.vertices.push_back(Vec3(i * s, j * s, k * s));
+    }
+    return static_cast<std::uint32_t>(v);
+  };
+  // a unit square face from corner (i, j, k), spanning axes u and w, outward along +d or -d
+  auto quad = [&](std::array<int, 3> c, int u, int w, bool flip) {
+    std::array<std::array<int, 3>, 4> q{c, c, c, c};
+    q[1][u] += 1;
+    q[2][u] += 1;
+    q[2][w] += 1;
+    q[3][w] += 1;
+    std::array<std::uint32_t, 4> v{};
+    for (int k = 0; k < 4; ++k)
+      v[k] = vertex(q[k][0], q[k][1], q[k][2]);
+    if (flip) std::swap(v[1], v[3]);
+    m.triangles.push_back({v[0], v[1], v[2]});
+    m.triangles.push_back({v[0], v[2], v[3]});
+  };
+  for (int i = 0; i < nx; ++i)
+    for (int j = 0; j < ny; ++j)
+      for (int k = 0; k < height(i); ++k)
+        for (int d = 0; d < 3; ++d) {
+          const int u = (d + 1) % 3, w = (d + 2) % 3; // (u, w, d) right-handed
+          for (int side = 0; side < 2; ++side) {
+            std::array<int, 3> n{i, j, k};
+            n[d] += side == 0 ? -1 : 1;
+            if (filled(n[0], n[1], n[2])) continue;
+            std::array<int, 3> c{i, j, k};
+            c[d] += side;
+            quad(c, u, w, side == 0); // u x w = +d: counter-clockwise seen from outside on +d
+          }
+        }
+  const generate::ClosedMesh stairs(m, "stairs");
+  double volume = 0.0;
+  for (int i = 0; i < nx; ++i)
+    volume += height(i) * ny * s * s * s;
+  CHECK(stairs.volume() == doctest::Approx(volume).epsilon(1e-12));
+  std::uint64_t state = 12345;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  int wrong = 0, tested = 0;
+  for (int n = 0; n < 40000; ++n) {
+    const Vec3 x(-0.05 + (nx * s + 0.1) * uniform(), -0.05 + (ny * s + 0.1) * uniform(),
+                 -0.05 + ((nx + 1) * s + 0.1) * uniform());
+    const int i = static_cast<int>(std::floor(x.x() / s));
+    const double top = i >= 0 && i < nx ? height(i) * s : 0.0;
+    // distance to the nearest face plane that could bound the point
+    const double near = std::min({std::abs(x.x() - std::round(x.x() / s) * s), std::abs(x.y()),
+                                  std::abs(x.y() - ny * s), std::abs(x.z()),
+                                  std::abs(x.z() - std::round(x.z() / s) * s)});
+    if (near < 1e-9) continue;
+    ++tested;
+    const bool inside =
+        x.x() > 0 && x.x() < nx * s && x.y() > 0 && x.y() < ny * s && x.z() > 0 && x.z() < top;
+    wrong += stairs.contains(x) != inside;
+  }
+  MESSAGE(tested << " points tested");
+  CHECK(tested > 39000);
+  CHECK(wrong == 0);
+  // points just below and above every tread, at the centre of the tread
+  for (int i = 0; i < nx; ++i) {
+    const double xc = (i + 0.5) * s, yc = 2.5 * s, z = height(i) * s;
+    CHECK(stairs.contains(Vec3(xc, yc, z - 1e-12)));
+    CHECK_FALSE(stairs.contains(Vec3(xc, yc, z + 1e-12)));
+  }
 }
 
 TEST_CASE("generate: size distributions match their closed forms") {

@@ -34,6 +34,10 @@ struct NormalResult {
   /// True if the bodies overlap but the contact carries nothing: a hysteretic law below its
   /// residual overlap, the particles off their plastic dent. No heat flows through it.
   bool detached = false;
+  /// Adhesive models: the attraction [N] that presses the surfaces together (the pull-off
+  /// offset). The tangential and rolling models limit their forces with the load force +
+  /// adhesion instead of the force (see `cohesive_model`); 0 for the others.
+  double adhesion = 0.0;
 };
 
 /// Result of a tangential-force model.
@@ -58,6 +62,23 @@ concept fills_slot = requires {
     std::is_trivially_copyable_v<typename M::template History<3>>;
 } // namespace detail
 
+/// True if the normal model `M` is adhesive (`static constexpr bool cohesive = true`): it sets
+/// `NormalResult::adhesion`, it may act across a gap, and it gives `static double reach(const
+/// Params&, const PairProperties&, double r_eff)`, the largest gap [m] across which it acts on a
+/// pair of effective radius up to r_eff (0: in contact only). The search then reaches that far
+/// beyond contact, and the model's `force` is called for listed pairs closer than that, with a
+/// negative overlap (minus the gap) for those that do not touch: it keeps in its history whether
+/// the pair is bonded and returns a zero force for a pair that is not. Across a gap only the
+/// normal force acts (the tangential and rolling models are not called and their histories are
+/// cleared); the model marks such results `detached` (no heat flows through them).
+template <class M>
+inline constexpr bool cohesive_model = [] {
+  if constexpr (requires { M::cohesive; })
+    return static_cast<bool>(M::cohesive);
+  else
+    return false;
+}();
+
 /// A normal-force model: `NormalResult force(const ContactGeometry<D>&, const PairProperties&,
 /// const Params&, History<D>&)`.
 template <class M>
@@ -66,7 +87,9 @@ concept NormalModel = detail::fills_slot<M, Slot::normal> &&
              typename M::template History<3>& h) {
   { M::force(g, p, prm, h) } -> std::same_as<NormalResult>;
   { M::stiffness_estimate(p, prm, 1.0, 1.0, 1.0) } -> std::convertible_to<double>;
-};
+} &&(!cohesive_model<M> || requires(const typename M::Params& prm, const PairProperties& p) {
+  { M::reach(prm, p, 1.0) } -> std::convertible_to<double>;
+});
 
 /// A tangential-force model: `TangentResult<D> force(geometry, pair, NormalResult, Params,
 /// History<D>&, dt)`.

@@ -407,6 +407,10 @@ private:
     }
     const double l0 = area(x, p[1], p[2]) / A, l1 = area(p[0], x, p[2]) / A;
     z = l0 * p[0].z() + l1 * p[1].z() + (1.0 - l0 - l1) * p[2].z();
+    // within the triangle's heights: rounded outside them (a flat face on a bucket boundary), the
+    // crossing would fall in a cell that does not hold the triangle and go uncounted
+    z = std::clamp(z, std::min({p[0].z(), p[1].z(), p[2].z()}),
+                   std::max({p[0].z(), p[1].z(), p[2].z()}));
     return true;
   }
 

@@ -257,6 +257,15 @@ public:
       if (vp.property == Property::heat_capacity || vp.property == Property::conductivity)
         throw InputError(std::string("VariableProperty: property = ") + property_name(vp.property) +
                          " is invalid without a thermal state; valid: mechanical properties");
+    if constexpr (Sim::contact_type::cohesive)
+      if (vp.property == Property::young || vp.property == Property::poisson)
+        throw InputError(std::string("VariableProperty (") + property_name(vp.property) +
+                         "): a variable elastic property is invalid with the adhesive normal "
+                         "model " +
+                         Sim::contact_type::normal_model::object +
+                         " (its reach across gaps is sized from the materials' E*); valid: "
+                         "restitution, friction, rolling_friction, radius, density or thermal "
+                         "properties");
     if (s.vprops_.add(std::move(vp), g, s.particles_.size())) s.table_.set_per_particle(true);
     // the contact pass and the visits of contacts read per-entry properties from now on
     if (s.vprops_.per_particle && Diagnostics<Sim>::listed_rows(s) == s.particles_.size())

@@ -251,6 +251,37 @@ struct ContactPass {
   static bool touching_wall(const Sim& s, std::size_t i, std::size_t k, ContactGeometry<D>& g) {
     return touching_wall(s, i, k, g, s.particles_.velocity, s.particles_.omega);
   }
+  /// Geometry of pair (i, j) if the contact law acts on it: touching, or within the reach of an
+  /// adhesive normal model across a gap (`Contact::cohesive`; the overlap is then negative).
+  static bool acting_pair(const Sim& s, std::size_t i, std::size_t j, ContactGeometry<D>& g) {
+    if constexpr (Contact::cohesive) {
+      const auto& p = s.particles_;
+      const double rs = p.radius[i] + p.radius[j] + s.gap_reach_;
+      if ((p.position[j] - p.position[i]).squaredNorm() >= rs * rs) return false;
+      pair_geometry_of(s, i, j, g, p.velocity, p.omega);
+      return true;
+    } else {
+      return touching_pair(s, i, j, g);
+    }
+  }
+  /// Geometry of the contact of particle i with wall k if the contact law acts on it (as
+  /// acting_pair), with the velocities `v`, `w`.
+  GRAIN_INLINE static bool acting_wall(const Sim& s, std::size_t i, std::size_t k,
+                                       ContactGeometry<D>& g, const std::vector<V>& v,
+                                       const std::vector<A>& w) {
+    if constexpr (Contact::cohesive) {
+      const auto& p = s.particles_;
+      const auto prox = s.walls_[k].proximity(p.position[i]);
+      if (prox.distance >= p.radius[i] + s.gap_reach_) return false;
+      wall_geometry<D>(g, s.walls_[k], prox, p.position[i], p.radius[i], p.mass[i], v[i], w[i]);
+      return true;
+    } else {
+      return touching_wall(s, i, k, g, v, w);
+    }
+  }
+  static bool acting_wall(const Sim& s, std::size_t i, std::size_t k, ContactGeometry<D>& g) {
+    return acting_wall(s, i, k, g, s.particles_.velocity, s.particles_.omega);
+  }
   /// Effective mass of the contact of particles i and j [kg]: m_i m_j / (m_i + m_j) (m_eff), or
   /// the free partner's mass if the other is fixed (an infinite mass, as against a wall; the
   /// restitution-based damping of the contact laws then gives the restitution asked for).
@@ -357,7 +388,15 @@ struct ContactPass {
     }
     if constexpr (thermal) {
       if (s.heat_on_) {
-        const double H = conductance(s, gc, law, r, h, Heat::cell_radius_pair(s, e));
+        double H;
+        if constexpr (Contact::cohesive && Contact::indirect) {
+          // an adhesive pair bonded across a gap conducts as any pair across a gap
+          ContactGeometry<D> gg;
+          H = gc.overlap > 0.0 ? conductance(s, gc, law, r, h, Heat::cell_radius_pair(s, e))
+                               : Heat::gap_pair_conductance(s, i, j, e, gg);
+        } else {
+          H = conductance(s, gc, law, r, h, Heat::cell_radius_pair(s, e));
+        }
         const double q = H * (p.temperature[j] - p.temperature[i]);
         const double w = Heat::dissipation_heat(s, gc, r);
         p.heat_rate[i] += q + w;
@@ -375,7 +414,7 @@ struct ContactPass {
     ContactGeometry<D> g;
     for (const auto e : s.list_.wall_entries(i)) {
       const auto w = s.list_.walls[e];
-      if (!touching_wall(s, i, w, g, vf, wf)) {
+      if (!acting_wall(s, i, w, g, vf, wf)) {
         if constexpr (!Contact::template stateless<D>) s.hist_.wall[e] = History{};
         s.wall_loads_.entries[e] = {};
         if constexpr (Contact::indirect) {
@@ -405,7 +444,14 @@ struct ContactPass {
       if constexpr (thermal) {
         if (heat) {
           if (s.wall_conducts(w)) {
-            const double H = conductance(s, g, law, r, h, Heat::cell_radius_wall(s, e));
+            double H;
+            if constexpr (Contact::cohesive && Contact::indirect) {
+              ContactGeometry<D> gg; // bonded across a gap: as any gap
+              H = g.overlap > 0.0 ? conductance(s, g, law, r, h, Heat::cell_radius_wall(s, e))
+                                  : Heat::gap_wall_conductance(s, i, w, e, gg);
+            } else {
+              H = conductance(s, g, law, r, h, Heat::cell_radius_wall(s, e));
+            }
             p.heat_rate[i] += H * (s.walls_[w].temperature - p.temperature[i]);
           }
           p.heat_rate[i] += Heat::dissipation_heat(s, g, r);
@@ -440,7 +486,8 @@ struct ContactPass {
       const auto i = static_cast<std::size_t>(ii);
       for (const auto e : s.list_.pair_entries(i)) {
         const auto j = s.list_.partners[e];
-        const double rs = p.radius[i] + p.radius[j];
+        double rs = p.radius[i] + p.radius[j];
+        if constexpr (Contact::cohesive) rs += s.gap_reach_; // the law acts across the gap
         if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
           pair_contact(s, e, i, j); // the geometry is made there, once
           continue;
@@ -482,7 +529,8 @@ struct ContactPass {
                     double ri) GRAIN_INLINE_LAMBDA {
       for (auto e = b; e < b_end; ++e) {
         const auto j = s.list_.partners[e];
-        const double rs = ri + p.radius[j];
+        double rs = ri + p.radius[j];
+        if constexpr (Contact::cohesive) rs += s.gap_reach_; // the law acts across the gap
         const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
         hit_entry[nhit] = e;
         hit_row[nhit] = i;

@@ -46,6 +46,8 @@ struct Diagnostics {
     auto visit = [&](std::size_t i, std::size_t j, bool wall, const typename Pass::Law& law,
                      History h, double cell_radius) {
       auto r = Pass::evaluate(s, g, law, h);
+      if constexpr (Contact::cohesive)
+        if (!(g.overlap > 0.0) && r.normal.force == 0.0) return; // within reach, not bonded
       using R = decltype(r);
       constexpr bool view = std::is_invocable_v<F&, const ContactViewType&>;
       if constexpr (view || std::is_invocable_v<F&, std::size_t, std::size_t, bool,
@@ -68,13 +70,13 @@ struct Diagnostics {
     for (std::size_t i = 0; i < listed_rows(s); ++i) {
       for (const auto e : s.list_.pair_entries(i)) {
         const auto j = s.list_.partners[e];
-        if (!Pass::touching_pair(s, i, j, g)) continue;
+        if (!Pass::acting_pair(s, i, j, g)) continue;
         visit(i, j, false, Pass::pair_law(s, e, i, j), Sim::history_at(s.hist_.pair, e),
               Heat::cell_radius_pair(s, e));
       }
       for (const auto e : s.list_.wall_entries(i)) {
         const auto w = s.list_.walls[e];
-        if (!Pass::touching_wall(s, i, w, g)) continue;
+        if (!Pass::acting_wall(s, i, w, g)) continue;
         visit(i, w, true, Pass::wall_law(s, e, i, w), Sim::history_at(s.hist_.wall, e),
               Heat::cell_radius_wall(s, e));
       }

@@ -105,7 +105,8 @@ public:
   /// The view of one contact that for_each_contact passes to a one-argument callable.
   using ContactViewType = ContactView<D, typename Contact::template Result<D>, History>;
 
-  /// Visits every touching contact: f(i, j_or_wall, is_wall, geometry, result), or, if f takes a
+  /// Visits every touching contact (and, with an adhesive normal model, every pair bonded across
+  /// a gap, with a negative overlap): f(i, j_or_wall, is_wall, geometry, result), or, if f takes a
   /// sixth argument, also the heat rate into particle i through the contact [W] (0 without heat
   /// conduction or across an insulated wall), or, if f takes one argument, a `ContactView`
   /// (partners, geometry, result, model data, heat rate and the local frame; see

@@ -99,7 +99,7 @@ struct NeighbourRebuild {
     // (the peak memory of a rebuild holds both lists)
     old_hist.shrink_to_contacts(old);
     std::vector<std::uint32_t> perm;
-    const double reach = s.skin_ + s.cutoff_;
+    const double reach = s.skin_ + std::max(s.cutoff_, s.gap_reach_);
     if constexpr (search::Reorders<SearchT, D>) {
       perm = SearchT::order(s.params_.search, p, reach, s.r_max_);
       if (!perm.empty()) {

@@ -192,7 +192,7 @@ struct StateCheck {
     if (!std::isfinite(s.time_) || !std::isfinite(s.time_offset_) || std::isnan(s.end_time_))
       return "the time " + num(s.time_) + " s";
     if (!non_negative(s.r_max_) || !non_negative(s.skin_) || !non_negative(s.reach_) ||
-        !non_negative(s.cutoff_))
+        !non_negative(s.cutoff_) || !non_negative(s.gap_reach_))
       return "the search distances (skin " + num(s.skin_) + " m)";
     if (s.initialized_ && s.snapshot_.size() != n)
       return "the positions of the last rebuild (" + std::to_string(s.snapshot_.size()) + " for " +

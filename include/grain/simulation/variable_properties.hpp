@@ -281,6 +281,7 @@ struct VariablePropertyStep {
         s.r_max_ = std::max(s.r_max_, r);
       s.skin_ = s.moves() ? SearchT::skin(s.params_.search, s.r_max_) : 0.0;
       if (s.heats()) s.cutoff_ = s.largest_cutoff();
+      s.gap_reach_ = s.largest_gap_reach();
       if (s.initialized_) Neighbours::rebuild(s);
     } else if (contact && s.initialized_) {
       Neighbours::refresh_pair_cache(s);
