@@ -52,6 +52,7 @@
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/search.hpp>
+#include <grain/setup/insertion.hpp>
 #include <grain/simulation/components.hpp>
 #include <grain/simulation/conditions_api.hpp>
 #include <grain/simulation/contact_pass.hpp>
@@ -265,6 +266,7 @@ public:
   /// time step.
   bool forces_move() const {
     if (!moves()) return false;
+    if (inserts_.active()) return true; // particles to come that are not fixed
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (!fixed_particle(i)) return true;
     for (const auto& s : life_.pending)
@@ -394,6 +396,7 @@ private:
     for (const auto& s : life_.pending)
       r_max_ = std::max(r_max_, s.radius);
     r_max_ = std::max(r_max_, vprops_.largest_radius());
+    r_max_ = std::max(r_max_, inserts_.largest_radius());
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
     cutoff_ = heats() ? largest_cutoff() : 0.0;
@@ -553,6 +556,7 @@ public:
     ar(vprops_.values[0], vprops_.values[1], vprops_.values[2], vprops_.values[3],
        vprops_.values[4], vprops_.values[5]);
     ar(life_.pending, life_.doomed, life_.removed_ids);
+    inserts_.serialize(ar, cond_.groups); // reading: the inserted ids join their groups again
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
@@ -760,7 +764,7 @@ private:
   bool spins_() const { return Contact::has_torque || !cond_.torques.empty(); }
 
   // ---------------------------------------------------------------- lifecycle
-  bool lifecycle_due() const { return life_.active(); }
+  bool lifecycle_due() const { return life_.active() || (!inserts_.empty() && inserts_.active()); }
   static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
 
   // ---------------------------------------------------------------- stages and fields
@@ -884,7 +888,8 @@ private:
   std::optional<std::pair<TimeFunction, TimeFunction>> damping_fn_;
   std::optional<std::pair<VectorTimeFunction<D>, AngularTimeFunction<D>>> mass_damping_;
   // lifecycle
-  Lifecycle<D> life_; ///< particles to come, destruction times, bounding box, sinks
+  Lifecycle<D> life_;             ///< particles to come, destruction times, bounding box, sinks
+  detail::Insertions<D> inserts_; ///< insertions of particles during the run, and their state
   /// After removal / activation: the index in the neighbour list's arrays of the particle now at
   /// index k (`none` for a new one); empty = unchanged indices.
   std::vector<std::uint32_t> origin_;

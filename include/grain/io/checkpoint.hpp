@@ -50,7 +50,7 @@
 namespace grain::io {
 
 /// Version of the checkpoint format; files of another version are rejected.
-inline constexpr std::uint32_t checkpoint_format_version = 2;
+inline constexpr std::uint32_t checkpoint_format_version = 3;
 
 namespace detail {
 
