@@ -21,7 +21,8 @@
 /// 6. time advances; wall temperatures follow their time functions;
 /// 7. lifecycle: particles that left the bounding box, entered a sink or reached their
 ///    destruction time are removed (with their contacts), particles whose creation time has come
-///    are activated; the neighbour list is rebuilt when that happens.
+///    are activated, insertions place the particles due (setup/insertion.hpp); the neighbour
+///    list is rebuilt when that happens.
 /// User stages: `begin_step` before 1, `before_search` between 1 and 2, `after_forces` between 4
 /// and 5, `end_of_step` after 7.
 ///
