@@ -492,3 +492,120 @@ TEST_CASE("insertion: temperatures of a thermal simulation") {
   CHECK(has(error_of([&] { sim.add_insertion(bad); }),
             {"Simulation::add_insertion 2 (material 'cold')", "heat_capacity = 0"}));
 }
+
+namespace {
+
+/// Runs `steps` steps of `sim` and checks each particle at the step it appears with
+/// `where(x, r)` (true if it is where the insertion puts it); returns the number checked and adds
+/// the misplaced ones to `bad`.
+template <class Sim, class Where>
+std::size_t check_places(Sim& sim, int steps, Where where, std::size_t& bad) {
+  std::set<std::int64_t> seen;
+  std::size_t checked = 0;
+  for (int n = 0; n < steps; ++n) {
+    sim.step();
+    const auto& p = sim.particles();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (seen.insert(p.id[i]).second) {
+        ++checked;
+        bad += !where(p.position[i], p.radius[i]);
+      }
+  }
+  return checked;
+}
+
+} // namespace
+
+TEST_CASE("insertion: every region and face puts the centres where it says") {
+  // 20 particles per step (2e6 / s at dt = 1e-5 s) for 20 steps, no gravity: the centres are
+  // those placed. Volumes: wholly inside (generate's `fits`, |x - c| <= R - r for a ball);
+  // faces: on the plane (1e-12 m) and at least r from the edge.
+  const Material m = soft();
+  std::size_t bad = 0;
+  SUBCASE("ball (3D)") {
+    Sim3 sim(params<Sim3>(Vec3::Zero()));
+    const auto k = sim.add_material(m);
+    const regions::Ball<3> ball{{0.1, -0.2, 0.3}, 0.05};
+    sim.add_insertion(
+        {.region = ball, .size = generate::Uniform{1e-3, 2e-3}, .material = k, .number_rate = 2e6});
+    CHECK(check_places(
+              sim, 20,
+              [&](const Vec3& x, double r) {
+                return (x - ball.center).norm() <= ball.radius - r + 1e-15;
+              },
+              bad) == 400);
+  }
+  SUBCASE("cylinder along a slanted axis (3D)") {
+    Sim3 sim(params<Sim3>(Vec3::Zero()));
+    const auto k = sim.add_material(m);
+    const generate::Cylinder cyl{{0, 0, 0}, {0.05, 0.02, 0.1}, 0.03};
+    sim.add_insertion(
+        {.region = cyl, .size = generate::Constant{1.5e-3}, .material = k, .number_rate = 2e6});
+    CHECK(check_places(
+              sim, 20, [&](const Vec3& x, double r) { return generate::detail::fits(cyl, x, r); },
+              bad) == 400);
+  }
+  SUBCASE("rectangle face (3D)") {
+    Sim3 sim(params<Sim3>(Vec3::Zero()));
+    const auto k = sim.add_material(m);
+    const insertion::RectangleFace f{{0, 0, 0.2}, {0.1, 0.1, 0}, {-0.05, 0.05, 0.0}};
+    sim.add_insertion({.region = f,
+                       .size = generate::Constant{1e-3},
+                       .material = k,
+                       .number_rate = 2e6,
+                       .velocity = Vec3(0, 0, -1)});
+    const Vec3 u1 = f.edge1.normalized(), u2 = f.edge2.normalized();
+    CHECK(check_places(
+              sim, 20,
+              [&](const Vec3& x, double r) {
+                const Vec3 w = x - f.corner;
+                const double s1 = w.dot(u1), s2 = w.dot(u2);
+                return std::abs(x.z() - 0.2) <= 1e-12 && s1 >= r - 1e-12 &&
+                       s1 <= f.edge1.norm() - r + 1e-12 && s2 >= r - 1e-12 &&
+                       s2 <= f.edge2.norm() - r + 1e-12;
+              },
+              bad) == 400);
+  }
+  SUBCASE("disk face (3D)") {
+    Sim3 sim(params<Sim3>(Vec3::Zero()));
+    const auto k = sim.add_material(m);
+    const insertion::DiskFace f{{0.1, 0.1, 0.1}, {1, 1, 1}, 0.05};
+    sim.add_insertion({.region = f,
+                       .size = generate::Constant{1e-3},
+                       .material = k,
+                       .number_rate = 2e6,
+                       .velocity = Vec3(1, 1, 1)});
+    const Vec3 n = f.normal.normalized();
+    CHECK(check_places(
+              sim, 20,
+              [&](const Vec3& x, double r) {
+                const Vec3 w = x - f.center;
+                return std::abs(w.dot(n)) <= 1e-12 && w.norm() <= f.radius - r + 1e-12;
+              },
+              bad) == 400);
+  }
+  SUBCASE("polygon (2D)") {
+    Sim2 sim(params<Sim2>(Vec2::Zero()));
+    const auto k = sim.add_material(m);
+    const regions::Polygon poly{{{0, 0}, {0.1, 0}, {0.1, 0.1}, {0.05, 0.03}, {0, 0.1}}};
+    sim.add_insertion(
+        {.region = poly, .size = generate::Constant{1e-3}, .material = k, .number_rate = 2e6});
+    CHECK(check_places(
+              sim, 20, [&](const Vec2& x, double r) { return generate::detail::fits(poly, x, r); },
+              bad) == 400);
+  }
+  SUBCASE("ball (2D)") {
+    Sim2 sim(params<Sim2>(Vec2::Zero()));
+    const auto k = sim.add_material(m);
+    const regions::Ball<2> ball{{0.3, 0.1}, 0.04};
+    sim.add_insertion(
+        {.region = ball, .size = generate::Constant{1e-3}, .material = k, .number_rate = 2e6});
+    CHECK(check_places(
+              sim, 20,
+              [&](const Vec2& x, double r) {
+                return (x - ball.center).norm() <= ball.radius - r + 1e-15;
+              },
+              bad) == 400);
+  }
+  CHECK(bad == 0);
+}
