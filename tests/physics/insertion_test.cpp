@@ -328,7 +328,7 @@ TEST_CASE("insertion: an empty simulation takes its time step from the insertion
 
 namespace {
 
-Sim3 make_pour() {
+Sim3 make_pour(double interval) {
   Sim3 sim(params<Sim3>(Vec3(0, 0, -g0), 2e-5));
   const auto k = sim.add_material(soft());
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = k});
@@ -340,7 +340,8 @@ Sim3 make_pour() {
                      .velocity = Vec3(0, 0, -0.3),
                      .velocity_spread = 0.05,
                      .group = "poured",
-                     .seed = 21});
+                     .seed = 21,
+                     .interval = interval});
   sim.prescribe_force("poured", VectorTimeFunction<3>(Vec3(1e-4, 0, 0)));
   return sim;
 }
@@ -351,33 +352,36 @@ TEST_CASE("insertion: a checkpoint mid-insertion continues bit-identically") {
   const auto dir = std::filesystem::temp_directory_path() / "grain_insertion_test";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "pour.ckpt").string();
-  Sim3 whole = make_pour();
-  whole.run(0.12);
-  Sim3 first = make_pour();
-  first.run(0.06);
-  REQUIRE(first.insertion_status(0).inserted > 50);
-  io::save_checkpoint(first, path);
-  Sim3 resumed = make_pour();
-  io::load_checkpoint(resumed, path);
-  CHECK(resumed.group("poured").ids == first.group("poured").ids);
-  resumed.run(0.06);
-  REQUIRE(resumed.size() == whole.size());
-  CHECK(resumed.step_count() == whole.step_count());
-  const auto& p = whole.particles();
-  const auto& q = resumed.particles();
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    differ += p.id[i] != q.id[i] || p.position[i] != q.position[i] ||
-              p.velocity[i] != q.velocity[i] || p.omega[i] != q.omega[i] ||
-              p.radius[i] != q.radius[i];
-  CHECK(differ == 0);
-  const auto &a = whole.insertion_status(0), &b = resumed.insertion_status(0);
-  CHECK(a.inserted == b.inserted);
-  CHECK(a.mass == b.mass);
-  CHECK(a.attempts == b.attempts);
-  CHECK(a.blocked_steps == b.blocked_steps);
-  CHECK(whole.group("poured").ids == resumed.group("poured").ids);
-  CHECK(a.inserted > first.insertion_status(0).inserted);
+  for (const double interval : {0.0, 3e-4}) { // every step; batches every 15 steps
+    CAPTURE(interval);
+    Sim3 whole = make_pour(interval);
+    whole.run(0.12);
+    Sim3 first = make_pour(interval);
+    first.run(0.06);
+    REQUIRE(first.insertion_status(0).inserted > 50);
+    io::save_checkpoint(first, path);
+    Sim3 resumed = make_pour(interval);
+    io::load_checkpoint(resumed, path);
+    CHECK(resumed.group("poured").ids == first.group("poured").ids);
+    resumed.run(0.06);
+    REQUIRE(resumed.size() == whole.size());
+    CHECK(resumed.step_count() == whole.step_count());
+    const auto& p = whole.particles();
+    const auto& q = resumed.particles();
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      differ += p.id[i] != q.id[i] || p.position[i] != q.position[i] ||
+                p.velocity[i] != q.velocity[i] || p.omega[i] != q.omega[i] ||
+                p.radius[i] != q.radius[i];
+    CHECK(differ == 0);
+    const auto &a = whole.insertion_status(0), &b = resumed.insertion_status(0);
+    CHECK(a.inserted == b.inserted);
+    CHECK(a.mass == b.mass);
+    CHECK(a.attempts == b.attempts);
+    CHECK(a.blocked_steps == b.blocked_steps);
+    CHECK(whole.group("poured").ids == resumed.group("poured").ids);
+    CHECK(a.inserted > first.insertion_status(0).inserted);
+  }
 
   // a simulation without the insertion does not take the file
   Sim3 other(params<Sim3>(Vec3(0, 0, -g0), 2e-5));
@@ -386,6 +390,47 @@ TEST_CASE("insertion: a checkpoint mid-insertion continues bit-identically") {
   CHECK(has(error_of([&] { io::load_checkpoint(other, path); }),
             {"insertions = 1 is invalid", "valid: 0"}));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("insertion: batches every interval") {
+  // 2000 spheres/s in batches every 1 ms (100 steps): particles appear only at the first step of
+  // each interval, in the number the rate gives then
+  const double rate = 2000.0, interval = 1e-3;
+  auto make = [&](double every) {
+    Sim3 sim(params<Sim3>(Vec3(0, 0, -g0)));
+    const auto k = sim.add_material(soft());
+    sim.add_insertion({.region = regions::Box<3>{{0, 0, 0.5}, {0.1, 0.1, 0.6}},
+                       .size = generate::Constant{2e-3},
+                       .material = k,
+                       .number_rate = rate,
+                       .velocity = Vec3(0, 0, -1),
+                       .seed = 7,
+                       .interval = every});
+    return sim;
+  };
+  Sim3 sim = make(interval);
+  std::size_t wrong = 0, batches = 0;
+  std::uint64_t tick = 0;
+  for (int n = 0; n < 5000; ++n) {
+    const std::size_t before = sim.size();
+    sim.step();
+    const double t = sim.time();
+    const auto q = static_cast<std::uint64_t>(std::floor(t / interval + 1e-9));
+    if (q > tick) { // a batch: the count the rate gives at t
+      tick = q;
+      ++batches;
+      wrong += sim.size() != due_count(rate, t, 0.0);
+    } else {
+      wrong += sim.size() != before; // nothing between batches
+    }
+  }
+  CHECK(batches == 50);
+  CHECK(wrong == 0);
+  CHECK(sim.size() == 100); // floor(2000 x 0.05)
+  // insertion at every step gives the same count at the end
+  Sim3 each = make(0.0);
+  each.run(0.05);
+  CHECK(each.size() == 100);
 }
 
 TEST_CASE("insertion: bad parameters are refused by name") {
@@ -426,6 +471,8 @@ TEST_CASE("insertion: bad parameters are refused by name") {
   CHECK(has(error([](auto& i) { i.velocity_spread = -0.1; }),
             {obj.c_str(), "velocity_spread = -0.1"}));
   CHECK(has(error([](auto& i) { i.max_attempts = 0; }), {obj.c_str(), "max_attempts = 0"}));
+  CHECK(has(error([](auto& i) { i.warn_after = 0; }), {obj.c_str(), "warn_after = 0"}));
+  CHECK(has(error([](auto& i) { i.interval = -1e-3; }), {obj.c_str(), "interval = -0.001"}));
   CHECK(has(error([](auto& i) { i.temperature = 300; }),
             {obj.c_str(), "temperature = 300", "no conduction model"}));
   CHECK(has(error([](auto& i) {

@@ -7,7 +7,8 @@
 /// `Simulation::add_insertion(Insertion<D>)` describes one insertion (checked when added);
 /// the simulation places its particles in the lifecycle stage of each step (simulation.hpp, step
 /// 7), at the time t the step ended, after the removals and with the particles whose creation
-/// time has come:
+/// time has come; with `Insertion::interval` > 0 only at the first step of each interval (and
+/// at t_end), in batches:
 /// - due: the number rate gives N(t) = floor(rate (t' - t_begin) + 1e-9) particles, t' = min(t,
 ///   t_end); the mass rate gives the longest prefix of the particle sequence whose mass sum is at
 ///   most rate (t' - t_begin) (times 1 + 1e-12), so that the mass inserted lags rate (t' - t_begin)
@@ -100,9 +101,13 @@ struct Insertion {
   std::string group{};            ///< the inserted particles join it (made if new); "" = none
   std::uint64_t seed = 1;         ///< of the radii, positions and velocity deviates
   std::size_t max_attempts = 100; ///< trial positions per particle and step
-  /// A blockage is reported (a warning) when particles have been carried over for this many
-  /// consecutive steps.
+  /// A blockage is reported (a warning) when particles have been carried over after this many
+  /// consecutive tries (steps, or batches with `interval`).
   std::uint64_t warn_after = 1000;
+  /// [s]: insert in batches, at the first step at or after each t_begin + j interval (j = 1, 2,
+  /// ...) and at t_end, instead of at every step (each step that inserts rebuilds the neighbour
+  /// list); 0 = every step.
+  double interval = 0.0;
   /// Initial temperature [K] (thermal simulations only); NaN = SimulationParams::
   /// initial_temperature.
   double temperature = std::numeric_limits<double>::quiet_NaN();
@@ -115,7 +120,7 @@ struct InsertionStatus {
   std::uint64_t due = 0;           ///< particles due by the last step
   std::uint64_t shortfall = 0;     ///< due - inserted: carried over (or, once finished, lost)
   std::uint64_t attempts = 0;      ///< trial positions
-  std::uint64_t blocked_steps = 0; ///< steps that ended with particles carried over
+  std::uint64_t blocked_steps = 0; ///< tries (steps or batches) that ended with a carry-over
   std::uint64_t warnings = 0;      ///< warnings given (blockages, a shortfall at the end)
   bool finished = false;           ///< total reached (all placed) or t_end passed
 };
@@ -140,6 +145,7 @@ public:
     InsertionStatus status{};
     double due_mass = 0.0;         ///< mass of the particles due [kg]
     std::uint64_t batches = 0;     ///< steps that tried to place particles (the position streams)
+    std::uint64_t ticks = 0;       ///< intervals passed at the last batch (Insertion::interval)
     std::uint64_t blocked_run = 0; ///< consecutive steps that ended with particles carried over
     std::vector<std::pair<std::int64_t, std::int64_t>> ids{}; ///< runs [first, last] of its ids
   };
@@ -199,11 +205,12 @@ public:
       require_finite(obj, "velocity component", spec.velocity[d]);
     require_non_negative(obj, "velocity_spread", spec.velocity_spread);
     require(std::isfinite(spec.t_begin) && spec.t_begin >= now, obj, "t_begin", spec.t_begin,
-            "[current time, inf) = [" + to_text(now) + ", inf) s");
+            cat("[current time, inf) = [", to_text(now), ", inf) s"));
     require(spec.t_end > spec.t_begin, obj, "t_end", spec.t_end,
-            "(t_begin, inf] = (" + to_text(spec.t_begin) + ", inf] s");
+            cat("(t_begin, inf] = (", to_text(spec.t_begin), ", inf] s"));
     require(spec.max_attempts > 0, obj, "max_attempts", spec.max_attempts, "[1, inf)");
     require(spec.warn_after > 0, obj, "warn_after", spec.warn_after, "[1, inf) steps");
+    require_non_negative(obj, "interval", spec.interval);
     if (thermal) {
       if (!std::isnan(spec.temperature))
         require(std::isfinite(spec.temperature) && spec.temperature >= 0.0, obj, "temperature",
@@ -231,6 +238,13 @@ public:
     std::size_t total = 0;
     for (auto& e : entries) {
       if (e.status.finished || t < e.spec.t_begin) continue;
+      if (e.spec.interval > 0.0 && t < e.spec.t_end) {
+        // batches: only at the first step of each interval (a quotient within 1e-9 below a
+        // whole number counts as it)
+        const double q = std::floor((t - e.spec.t_begin) / e.spec.interval + 1e-9);
+        if (!(q > static_cast<double>(e.ticks))) continue;
+        e.ticks = static_cast<std::uint64_t>(q);
+      }
       auto& st = e.status;
       const bool exhausted = advance_due(e, std::min(t, e.spec.t_end), volume);
       std::size_t now = 0;
@@ -280,14 +294,14 @@ public:
     ar(n);
     if constexpr (Archive::reading)
       if (n != entries.size())
-        throw InputError("checkpoint: insertions = " + std::to_string(n) +
-                         " is invalid; valid: " + std::to_string(entries.size()) +
-                         " (the insertions of this simulation, added in the same order before "
-                         "loading)");
+        throw InputError(cat("checkpoint: insertions = ", std::to_string(n),
+                             " is invalid; valid: ", std::to_string(entries.size()),
+                             " (the insertions of this simulation, added in the same order "
+                             "before loading)"));
     for (auto& e : entries) {
       auto& st = e.status;
       ar(st.inserted, st.mass, st.due, st.shortfall, st.attempts, st.blocked_steps, st.warnings,
-         st.finished, e.due_mass, e.batches, e.blocked_run, e.ids);
+         st.finished, e.due_mass, e.batches, e.ticks, e.blocked_run, e.ids);
       if constexpr (Archive::reading) {
         if (st.inserted > st.due || !(st.mass >= 0.0) || !(e.due_mass >= 0.0))
           throw InputError("checkpoint: the state of insertion " + e.obj + " is invalid");
@@ -341,14 +355,21 @@ private:
   }
 
   static std::string to_text(double v) { return grain::detail::to_text(v); }
+  /// The parts appended in order (messages that start with a literal are built so, not by
+  /// "literal" + std::string: GCC 12 at -O3 gives a false -Wrestrict warning for that).
+  template <class... T>
+  static std::string cat(const T&... parts) {
+    std::string s;
+    ((s += parts), ...);
+    return s;
+  }
 
   /// "<what> = v is invalid; valid range: [2 x largest radius, inf) m".
   static void require_room(bool ok, const std::string& obj, const char* what, double v,
                            double need) {
-    require(ok, obj, what, v,
-            "[" + to_text(need) +
-                ", inf) m (room for the largest radius of the size "
-                "distribution)");
+    require(
+        ok, obj, what, v,
+        cat("[", to_text(need), ", inf) m (room for the largest radius of the size distribution)"));
   }
   /// The unit normal of a face and a check that the velocity leaves it.
   static void require_leaves(const std::string& obj, const V& n, const V& v) {

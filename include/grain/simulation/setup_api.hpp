@@ -219,10 +219,11 @@ public:
   const InsertionStatus& insertion_status(std::size_t k) const {
     const Sim& s = self();
     if (k >= s.inserts_.entries.size())
-      throw InputError("Simulation::insertion_status: insertion = " + std::to_string(k) +
-                       " is invalid; valid range: [0, " +
-                       std::to_string(s.inserts_.entries.size()) +
-                       ") (indices returned by add_insertion)");
+      throw InputError(std::string("Simulation::insertion_status: insertion = ")
+                           .append(std::to_string(k))
+                           .append(" is invalid; valid range: [0, ")
+                           .append(std::to_string(s.inserts_.entries.size()))
+                           .append(") (indices returned by add_insertion)"));
     return s.inserts_.entries[k].status;
   }
   /// The number of insertions added.
