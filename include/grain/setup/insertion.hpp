@@ -525,7 +525,7 @@ private:
     std::uint64_t cap = no_limit;
     if (sp.number_rate > 0.0) {
       const double q = sp.number_rate * (tt - sp.t_begin);
-      cap = q <= 0.0 ? 0 : static_cast<std::uint64_t>(std::floor(q + 1e-9));
+      cap = q <= 0.0 ? 0 : static_cast<std::uint64_t>(std::floor(std::min(q, 0x1p62) + 1e-9));
     }
     bool by_count = false;
     if (sp.total_count > 0 && sp.total_count <= cap) {
@@ -539,12 +539,14 @@ private:
       m_due = sp.total_mass;
       by_mass = true;
     }
+    if (!std::isfinite(m_due)) { // a count alone: no radius needed
+      st.due = std::max(st.due, cap);
+      return by_count;
+    }
     while (st.due < cap) {
-      if (std::isfinite(m_due)) {
-        const double m = e.density * volume(radius(e, st.due));
-        if (e.due_mass + m > m_due * (1.0 + 1e-12)) return by_mass;
-        e.due_mass += m;
-      }
+      const double m = e.density * volume(radius(e, st.due));
+      if (e.due_mass + m > m_due * (1.0 + 1e-12)) return by_mass;
+      e.due_mass += m;
       ++st.due;
     }
     return by_count;
