@@ -144,9 +144,9 @@ public:
     std::size_t group = no_group;
     InsertionStatus status{};
     double due_mass = 0.0;         ///< mass of the particles due [kg]
-    std::uint64_t batches = 0;     ///< steps that tried to place particles (the position streams)
+    std::uint64_t batches = 0;     ///< tries with particles due (seeds of the position streams)
     std::uint64_t ticks = 0;       ///< intervals passed at the last batch (Insertion::interval)
-    std::uint64_t blocked_run = 0; ///< consecutive steps that ended with particles carried over
+    std::uint64_t blocked_run = 0; ///< consecutive tries that ended with particles carried over
     std::vector<std::pair<std::int64_t, std::int64_t>> ids{}; ///< runs [first, last] of its ids
   };
   std::vector<Entry> entries;
@@ -259,7 +259,8 @@ public:
                  " s: " + std::to_string(st.due - st.inserted) +
                  " particles due are carried over (" + std::to_string(st.inserted) + " of " +
                  std::to_string(st.due) + " placed so far) after " + std::to_string(e.blocked_run) +
-                 " steps with particles carried over; insertion resumes when there is room");
+                 " tries in a row that left particles over; insertion resumes when there is "
+                 "room");
           }
         } else {
           e.blocked_run = 0;
