@@ -69,6 +69,7 @@
 #include <grain/presets.hpp>
 #include <grain/search/search.hpp>
 #include <grain/setup/generate.hpp>
+#include <grain/setup/insertion.hpp>
 #include <grain/simulation.hpp>
 #include <grain/walls/facets.hpp>
 #include <grain/walls/obstacle.hpp>

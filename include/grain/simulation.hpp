@@ -21,7 +21,8 @@
 /// 6. time advances; wall temperatures follow their time functions;
 /// 7. lifecycle: particles that left the bounding box, entered a sink or reached their
 ///    destruction time are removed (with their contacts), particles whose creation time has come
-///    are activated; the neighbour list is rebuilt when that happens.
+///    are activated, insertions place the particles due (setup/insertion.hpp); the neighbour
+///    list is rebuilt when that happens.
 /// User stages: `begin_step` before 1, `before_search` between 1 and 2, `after_forces` between 4
 /// and 5, `end_of_step` after 7.
 ///
@@ -52,6 +53,7 @@
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/search.hpp>
+#include <grain/setup/insertion.hpp>
 #include <grain/simulation/components.hpp>
 #include <grain/simulation/conditions_api.hpp>
 #include <grain/simulation/contact_pass.hpp>
@@ -265,6 +267,7 @@ public:
   /// time step.
   bool forces_move() const {
     if (!moves()) return false;
+    if (inserts_.active()) return true; // particles to come that are not fixed
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (!fixed_particle(i)) return true;
     for (const auto& s : life_.pending)
@@ -394,6 +397,7 @@ private:
     for (const auto& s : life_.pending)
       r_max_ = std::max(r_max_, s.radius);
     r_max_ = std::max(r_max_, vprops_.largest_radius());
+    r_max_ = std::max(r_max_, inserts_.largest_radius());
     skin_ = moves() ? SearchT::skin(params_.search, r_max_) : 0.0;
     heat_on_ = heats();
     cutoff_ = heats() ? largest_cutoff() : 0.0;
@@ -555,6 +559,7 @@ public:
     ar(vprops_.values[0], vprops_.values[1], vprops_.values[2], vprops_.values[3],
        vprops_.values[4], vprops_.values[5]);
     ar(life_.pending, life_.doomed, life_.removed_ids);
+    inserts_.serialize(ar, cond_.groups); // reading: the inserted ids join their groups again
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
@@ -775,7 +780,7 @@ private:
   bool spins_() const { return Contact::has_torque || !cond_.torques.empty(); }
 
   // ---------------------------------------------------------------- lifecycle
-  bool lifecycle_due() const { return life_.active(); }
+  bool lifecycle_due() const { return life_.active() || (!inserts_.empty() && inserts_.active()); }
   static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
 
   // ---------------------------------------------------------------- stages and fields
@@ -900,7 +905,8 @@ private:
   std::optional<std::pair<TimeFunction, TimeFunction>> damping_fn_;
   std::optional<std::pair<VectorTimeFunction<D>, AngularTimeFunction<D>>> mass_damping_;
   // lifecycle
-  Lifecycle<D> life_; ///< particles to come, destruction times, bounding box, sinks
+  Lifecycle<D> life_;             ///< particles to come, destruction times, bounding box, sinks
+  detail::Insertions<D> inserts_; ///< insertions of particles during the run, and their state
   /// After removal / activation: the index in the neighbour list's arrays of the particle now at
   /// index k (`none` for a new one); empty = unchanged indices.
   std::vector<std::uint32_t> origin_;

@@ -5,7 +5,8 @@
 /// program (same types, materials and walls; groups, conditions and variable properties added
 /// again by the program), which then continues bit-identically to the run that was never
 /// interrupted: particles (active and waiting), their contact histories, the neighbour list, the
-/// thermal state, walls' positions and temperatures, time and step count.
+/// thermal state, walls' positions and temperatures, time and step count, the state of the
+/// insertions (added again by the program, like groups, before loading).
 ///
 /// \code
 /// auto sim = make_simulation();                 // the program's own set-up
@@ -50,7 +51,7 @@
 namespace grain::io {
 
 /// Version of the checkpoint format; files of another version are rejected.
-inline constexpr std::uint32_t checkpoint_format_version = 2;
+inline constexpr std::uint32_t checkpoint_format_version = 3;
 
 namespace detail {
 

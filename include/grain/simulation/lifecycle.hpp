@@ -287,12 +287,30 @@ struct LifecycleStep {
     }
   }
 
+  /// Adds to the decision `d` the particles the insertions place at the current time, tested
+  /// against the particles that stay and those that arrive (setup/insertion.hpp).
+  static void insert(Sim& s, typename Lifecycle<D>::Decision& d) {
+    auto& p = s.particles_;
+    const double temperature =
+        thermal ? s.params_.initial_temperature : std::numeric_limits<double>::quiet_NaN();
+    const std::size_t placed = s.inserts_.place(
+        s.time_, p.position, p.radius, d.removed ? &d.kept : nullptr, d.born, s.r_max_,
+        [&](double r) { return s.shape_.volume(r); }, temperature, s.next_id_, s.cond_.groups);
+    if (placed == 0 || d.changed) return;
+    // nothing else changed: every particle keeps its place
+    d.changed = true;
+    d.kept.resize(p.size());
+    for (std::size_t i = 0; i < d.kept.size(); ++i)
+      d.kept[i] = static_cast<std::uint32_t>(i);
+  }
+
   /// Removes the particles that left the bounding box, entered a sink or reached their
   /// destruction time, and activates those whose creation time has come (Lifecycle::decide).
   static void lifecycle(Sim& s) {
     auto& p = s.particles_;
     const double t = s.time_;
     auto d = s.life_.decide(t, p.position, p.id, [&] { s.require_finite_state(); });
+    if (s.inserts_.active()) insert(s, d);
     if (!d.changed) return;
     s.collect_wall_loads(); // before the particles are renumbered
     if (d.removed) Neighbours::keep_particles(s, d.kept);

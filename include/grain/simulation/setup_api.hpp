@@ -12,6 +12,7 @@
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/particles/material.hpp>
+#include <grain/setup/insertion.hpp>
 #include <grain/simulation/components.hpp>
 #include <grain/simulation/pair_table.hpp>
 #include <grain/simulation/params.hpp>
@@ -176,6 +177,58 @@ public:
     r.validate("Simulation::add_sink " + std::to_string(s.life_.sinks.size()));
     s.life_.sinks.push_back(r);
   }
+  // ---------------------------------------------------------------- insertion
+  /// Adds an insertion of particles during the run (setup/insertion.hpp, docs/insertion.md);
+  /// returns its index. Throws InputError naming the insertion, the value and the valid range
+  /// for bad input. The group it names is made if it does not exist.
+  std::size_t add_insertion(const Insertion<D>& insertion) {
+    Sim& s = self();
+    const std::size_t k = s.inserts_.entries.size();
+    const std::string obj =
+        "Simulation::add_insertion " +
+        (insertion.name.empty() ? std::to_string(k) : "'" + insertion.name + "'");
+    s.table_.check_material(insertion.material, obj);
+    if constexpr (Sim::thermal) {
+      const Material& m = s.table_.material(insertion.material);
+      if (s.heats())
+        detail::require(m.heat_capacity > 0, obj + " (material '" + m.name + "')", "heat_capacity",
+                        m.heat_capacity, "(0, inf) J/(kg K) (its particles are heated)");
+    }
+    s.inserts_.add(insertion, obj, s.time_, s.table_.material(insertion.material).density,
+                   Sim::thermal);
+    auto& e = s.inserts_.entries.back();
+    if (!insertion.group.empty()) {
+      std::size_t g = s.inserts_.no_group;
+      for (std::size_t h = 0; h < s.cond_.groups.size(); ++h)
+        if (s.cond_.groups[h].name == insertion.group) g = h;
+      if (g == s.inserts_.no_group) {
+        try {
+          g = s.cond_.add(Group{insertion.group, false, {}, {}});
+        } catch (...) {
+          s.inserts_.entries.pop_back();
+          throw;
+        }
+      }
+      e.group = g;
+      s.groups_dirty_ = true;
+    }
+    s.initialized_ = false; // the search and the time step allow for its particles
+    return k;
+  }
+  /// What insertion k (the index add_insertion returned) has done so far.
+  const InsertionStatus& insertion_status(std::size_t k) const {
+    const Sim& s = self();
+    if (k >= s.inserts_.entries.size())
+      throw InputError(std::string("Simulation::insertion_status: insertion = ")
+                           .append(std::to_string(k))
+                           .append(" is invalid; valid range: [0, ")
+                           .append(std::to_string(s.inserts_.entries.size()))
+                           .append(") (indices returned by add_insertion)"));
+    return s.inserts_.entries[k].status;
+  }
+  /// The number of insertions added.
+  std::size_t insertion_count() const { return self().inserts_.entries.size(); }
+
   /// Ids of the particles removed so far (bounding box, sinks, destruction time), in order.
   const std::vector<std::int64_t>& removed_ids() const { return self().life_.removed_ids; }
   /// Particles added with a creation time still in the future.

@@ -199,7 +199,7 @@ struct TimeStepLimits {
 
   /// Sim::contact_time_step.
   static double contact_time_step(const Sim& s) {
-    if (s.particles_.size() + s.life_.pending.size() == 0)
+    if (s.particles_.size() + s.life_.pending.size() == 0 && !s.inserts_.active())
       return std::numeric_limits<double>::infinity();
     const double v = reference_speed(s);
     double t = std::numeric_limits<double>::infinity();
@@ -329,6 +329,10 @@ struct TimeStepLimits {
     for (const auto& spec : s.life_.pending)
       visit(spec.radius, spec.material,
             s.table_.material(spec.material).density * s.shape_.volume(spec.radius));
+    // the smallest and largest particle each insertion can still give
+    s.inserts_.for_each_bound([&](double r, std::uint32_t k) {
+      visit(r, k, s.table_.material(k).density * s.shape_.volume(r));
+    });
   }
 
   static double reference_speed(const Sim& s) {
@@ -339,6 +343,7 @@ struct TimeStepLimits {
       v = std::max(v, spec.velocity.norm());
     for (const auto& w : s.walls_)
       v = std::max(v, w.options.velocity.norm());
+    v = std::max(v, s.inserts_.largest_speed());
     return std::max(s.params_.reference_velocity, 2.0 * v);
   }
 
