@@ -304,7 +304,8 @@ public:
       ar(st.inserted, st.mass, st.due, st.shortfall, st.attempts, st.blocked_steps, st.warnings,
          st.finished, e.due_mass, e.batches, e.ticks, e.blocked_run, e.ids);
       if constexpr (Archive::reading) {
-        if (st.inserted > st.due || !(st.mass >= 0.0) || !(e.due_mass >= 0.0))
+        if (st.inserted > st.due || !(st.mass >= 0.0) || !(e.due_mass >= 0.0) ||
+            !ids_match(e.ids, st.inserted))
           throw InputError("checkpoint: the state of insertion " + e.obj + " is invalid");
         if (e.group != no_group && !groups[e.group].everything) {
           auto& ids = groups[e.group].ids;
@@ -320,6 +321,22 @@ public:
 
 private:
   using Random = generate::Random;
+
+  /// True if `runs` are ascending, disjoint runs [first, last] of ids >= 0 that hold `count`
+  /// ids in all (what a file read may not be trusted with: the runs are expanded into groups).
+  static bool ids_match(const std::vector<std::pair<std::int64_t, std::int64_t>>& runs,
+                        std::uint64_t count) {
+    std::uint64_t total = 0;
+    std::int64_t last = -1;
+    for (const auto& [a, b] : runs) {
+      if (!(a > last && b >= a)) return false;
+      const std::uint64_t n = static_cast<std::uint64_t>(b - a) + 1; // b - a < 2^63
+      if (n > count - total) return false;
+      total += n;
+      last = b;
+    }
+    return total == count;
+  }
 
   static std::uint64_t splitmix(std::uint64_t z) {
     z += 0x9e3779b97f4a7c15ULL;
