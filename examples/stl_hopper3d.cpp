@@ -5,9 +5,10 @@
 /// faces from a 80 mm x 80 mm top at z = 140 mm down to a 24 mm x 24 mm outlet at z = 60 mm,
 /// two triangles each, and writes it as a binary STL file, hopper.stl, in the output folder. It
 /// then reads that file back in metres (io::read_stl with scale 1e-3) into a fixed obstacle.
-/// 800 glass spheres (radii uniform in 1.5-2.5 mm, from a fixed seed) are generated without
-/// overlaps in a box above the hopper (generate::fill), fall into it under gravity, and run out
-/// through the outlet onto the floor (a plane at z = 0).
+/// 800 glass spheres (radii uniform in 1.5-2.5 mm, from a fixed seed) are poured in through a
+/// 60 mm x 60 mm face 60 mm above the hopper, 4000 a second at 0.5 m/s downwards, never
+/// overlapping the spheres already there (an insertion, docs/insertion.md); they fall into the
+/// hopper and run out through the outlet onto the floor (a plane at z = 0).
 ///
 /// Models: Hertz-Mindlin with Tsuji damping (restitution 0.4, friction 0.3); Young's modulus
 /// softened to 5e7 Pa for a longer time step. Linked cells; velocity Verlet.
@@ -16,8 +17,8 @@
 ///   end_time_s  simulated time [s] (default 0.6)
 ///   output_dir  folder for hopper.stl and the VTK series (default out/stl_hopper3d)
 ///
-/// Output: every 0.05 s the spheres still above the outlet, in the hopper (between the outlet
-/// and the top) and below it; VTK files of the particles and of the hopper's triangles every
+/// Output: every 0.05 s the spheres poured so far, and how many are above the hopper, in it
+/// (between the outlet and the top) and below it; VTK files of the particles and of the hopper's triangles every
 /// 0.05 s. At the end, with Python, VTK and matplotlib installed, a 3D picture of the last frame
 /// (scripts/grain_plot.py), stl_hopper3d_final.png. Exits with status 1 if the file read back
 /// differs from the mesh written, or a sphere is not finite or below the floor.
@@ -88,20 +89,28 @@ int main(int argc, char** argv) {
   add_obstacle(sim, hopper, {.name = "hopper", .material = glass});
   sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.name = "floor", .material = glass});
 
-  const auto packing = generate::fill(
-      regions::Box<3>{Vec3(-0.038, -0.038, 0.145), Vec3(0.038, 0.038, 0.26)},
-      generate::Uniform{1.5e-3, 2.5e-3}, {.material = glass, .count = 800, .seed = 7});
-  generate::add_to(sim, packing);
-  std::printf("  %zu spheres generated above the hopper (solid fraction %.3f)\n",
-              packing.particles.size(), packing.solid_fraction);
+  // the spheres enter through a horizontal face above the hopper
+  const auto pour =
+      sim.add_insertion({.name = "pour",
+                         .region = insertion::RectangleFace{Vec3(-0.03, -0.03, 0.2),
+                                                            Vec3(0.06, 0, 0), Vec3(0, 0.06, 0)},
+                         .size = generate::Uniform{1.5e-3, 2.5e-3},
+                         .material = glass,
+                         .number_rate = 4000.0,
+                         .total_count = 800,
+                         .velocity = Vec3(0, 0, -0.5),
+                         .group = "poured",
+                         .seed = 7});
 
   constexpr double z_out = 0.06, z_top = 0.14;
-  std::printf("      t [s]   above   in hopper   out below\n");
+  std::printf("      t [s]   poured   above   in hopper   out below\n");
   auto log = [&](const Sim& s) {
     std::size_t above = 0, in = 0, below = 0;
     for (const auto& x : s.particles().position)
       (x.z() > z_top ? above : x.z() > z_out ? in : below) += 1;
-    std::printf("  %8.3f   %5zu   %9zu   %9zu\n", s.time(), above, in, below);
+    std::printf("  %8.3f   %6llu   %5zu   %9zu   %9zu\n", s.time(),
+                static_cast<unsigned long long>(s.insertion_status(pour).inserted), above, in,
+                below);
   };
   const std::string prefix = (out_dir / "stl_hopper3d").string();
   sim.run(end_time, io::summary(), io::every(0.05, log), io::every(0.05, io::vtk(prefix, 0.1)),
@@ -112,9 +121,11 @@ int main(int argc, char** argv) {
     bad += !(x.allFinite() && x.z() > 0.0);
     below += x.z() < z_out;
   }
-  std::printf("\nstl_hopper3d: after %.3f s %zu of %zu spheres have run out of the hopper; %zu "
-              "not finite or below the floor\n",
-              sim.time(), below, sim.size(), bad);
+  const auto& status = sim.insertion_status(pour);
+  std::printf("\nstl_hopper3d: after %.3f s %llu spheres poured (%llu still due), %zu of them have "
+              "run out of the hopper; %zu not finite or below the floor\n",
+              sim.time(), static_cast<unsigned long long>(status.inserted),
+              static_cast<unsigned long long>(status.shortfall), below, bad);
   const std::string last = example::last_file(out_dir, "stl_hopper3d_particles_");
   const bool picture =
       !last.empty() &&
