@@ -206,9 +206,11 @@ struct Interaction {
     Result<D> r;
     r.normal = normal_model::force(g, pair, p.normal, h.normal);
     if constexpr (cohesive) {
-      if (!(g.overlap > 0.0)) { // across a gap: the normal force only
-        h.tangent = {};
+      if (!(g.overlap > 0.0)) { // across a gap: the normal force only, the other histories
+        h.tangent = {};         // start afresh at the next touch, as after a separation
         h.rolling = {};
+        h.conduction = {};
+        h.area = {};
         r.force = -r.normal.force * g.normal;
         return r;
       }

@@ -559,7 +559,8 @@ public:
     ar(vprops_.values[0], vprops_.values[1], vprops_.values[2], vprops_.values[3],
        vprops_.values[4], vprops_.values[5]);
     ar(life_.pending, life_.doomed, life_.removed_ids);
-    inserts_.serialize(ar, cond_.groups); // reading: the inserted ids join their groups again
+    // reading: the inserted ids join their groups again (at most the particles present or gone)
+    inserts_.serialize(ar, cond_.groups, particles_.size() + life_.removed_ids.size());
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {

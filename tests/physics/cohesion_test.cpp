@@ -381,3 +381,35 @@ TEST_CASE("cohesion: adhesive parameters out of range are refused by name") {
   const VariableProperty vp("all", Property::young, Variable::time, Table(points));
   CHECK_THROWS_WITH_AS(sim.add_variable_property(vp), doctest::Contains("normal::Jkr"), InputError);
 }
+
+TEST_CASE("cohesion: across a gap the other models' histories start afresh") {
+  // A capillary bridge across a gap with a collisional conduction model and a tangential spring:
+  // evaluated at a gap of 1 um with the bridge standing, the normal force is the bridge's and
+  // the tangential and conduction histories are cleared (a collisional contact that separates
+  // and hits again starts a new impact), while the bridge stays. Exact values.
+  using Contact =
+      Interaction<normal::Capillary<>, tangent::Mindlin, rolling::None, conduction::Collisional>;
+  Contact::Params p;
+  p.normal.surface_tension = 0.0728;
+  p.normal.liquid_volume = 1e-12;
+  PairProperties pair;
+  pair.young_eff = 1e8;
+  pair.shear_eff = 4e7;
+  pair.friction = 0.5;
+  ContactGeometry<3> g;
+  g.r_eff = 0.5e-3;
+  g.m_eff = 1e-6;
+  g.normal = Vec3(1, 0, 0);
+  g.overlap = -1e-6;
+  Contact::History<3> h;
+  h.normal.bridge = 1;
+  h.conduction.duration = 1e-4;
+  h.conduction.elapsed = 5e-5;
+  h.tangent.spring = PlainVec<3>{1e-7, 0, 0};
+  const auto r = Contact::evaluate(g, pair, p, h, 1e-6);
+  CHECK(r.normal.force == -normal::Capillary<>::bridge_force(p.normal, g.r_eff, 1e-6));
+  CHECK(h.normal.bridge == 1);
+  CHECK(h.conduction.duration == 0.0);
+  CHECK(h.conduction.elapsed == 0.0);
+  CHECK(h.tangent.spring == PlainVec<3>{});
+}

@@ -148,6 +148,9 @@ public:
     std::uint64_t ticks = 0;       ///< intervals passed at the last batch (Insertion::interval)
     std::uint64_t blocked_run = 0; ///< consecutive tries that ended with particles carried over
     std::vector<std::pair<std::int64_t, std::int64_t>> ids{}; ///< runs [first, last] of its ids
+    /// Its place among the insertions: mixed into its seed, so that two insertions with the same
+    /// seed draw different streams.
+    std::uint64_t index = 0;
   };
   std::vector<Entry> entries;
 
@@ -220,6 +223,7 @@ public:
                        " K is given but the contact has no conduction model; valid: leave it "
                        "unset, or give the Interaction a conduction model");
     }
+    e.index = entries.size();
     entries.push_back(std::move(e));
   }
 
@@ -282,15 +286,16 @@ public:
 
   /// The radius [m] of particle k of insertion e.
   static double radius(const Entry& e, std::uint64_t k) {
-    generate::Random rng(mix(e.spec.seed, k, 0));
+    generate::Random rng(mix(e, k, 0));
     return e.sampler.sample(rng);
   }
 
   // ---------------------------------------------------------------- checkpoint
   /// Visits the state of every insertion; reading, the ids each gave join its group again (the
   /// program makes the groups and insertions before loading).
+  /// `most` bounds the particles all insertions can have given (those present and removed).
   template <class Archive>
-  void serialize(Archive& ar, std::vector<Group>& groups) {
+  void serialize(Archive& ar, std::vector<Group>& groups, std::uint64_t most) {
     std::uint64_t n = entries.size();
     ar(n);
     if constexpr (Archive::reading)
@@ -304,9 +309,10 @@ public:
       ar(st.inserted, st.mass, st.due, st.shortfall, st.attempts, st.blocked_steps, st.warnings,
          st.finished, e.due_mass, e.batches, e.ticks, e.blocked_run, e.ids);
       if constexpr (Archive::reading) {
-        if (st.inserted > st.due || !(st.mass >= 0.0) || !(e.due_mass >= 0.0) ||
-            !ids_match(e.ids, st.inserted))
+        if (st.inserted > st.due || st.inserted > most || !(st.mass >= 0.0) ||
+            !(e.due_mass >= 0.0) || !ids_match(e.ids, st.inserted))
           throw InputError("checkpoint: the state of insertion " + e.obj + " is invalid");
+        most -= st.inserted;
         if (e.group != no_group && !groups[e.group].everything) {
           auto& ids = groups[e.group].ids;
           for (const auto& [a, b] : e.ids)
@@ -344,9 +350,9 @@ private:
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
   }
-  /// The seed of stream `stream` (0: radii, 1: positions) number k.
-  static std::uint64_t mix(std::uint64_t seed, std::uint64_t k, std::uint64_t stream) {
-    return splitmix(seed ^ splitmix(2 * k + stream + 1));
+  /// The seed of stream `stream` (0: radii, 1: positions) number k of insertion e.
+  static std::uint64_t mix(const Entry& e, std::uint64_t k, std::uint64_t stream) {
+    return splitmix(splitmix(e.spec.seed ^ splitmix(e.index)) ^ splitmix(2 * k + stream + 1));
   }
 
   static generate::detail::Sampler make_sampler(const generate::Distribution& d,
@@ -561,13 +567,14 @@ private:
       st.due = std::max(st.due, cap);
       return by_count;
     }
-    while (st.due < cap) {
+    // at most 2^20 particles more per step (a rate of absurd mass lags rather than hangs)
+    for (std::uint64_t more = 0; st.due < cap && more < (std::uint64_t{1} << 20); ++more) {
       const double m = e.density * volume(radius(e, st.due));
       if (e.due_mass + m > m_due * (1.0 + 1e-12)) return by_mass;
       e.due_mass += m;
       ++st.due;
     }
-    return by_count;
+    return by_count && st.due >= cap;
   }
 
   template <class Volume>
@@ -603,7 +610,7 @@ private:
     for (const auto k : born_items)
       grid.insert(born[k].position, born[k].radius);
 
-    Random rng(mix(e.spec.seed, e.batches++, 1));
+    Random rng(mix(e, e.batches++, 1));
     std::size_t placed = 0;
     while (st.inserted < st.due) {
       const double rk = radius(e, st.inserted);
