@@ -1,7 +1,8 @@
 // Whole simulation steps of the benchmark cases (settle3d, thermal3d and pack2d at N = 1e4 and
 // 1e5, settle3d and thermal3d at 1e6: the sizes of docs/performance.md, warm-up steps first);
 // reports particle-steps per second. settle3d and thermal3d (the same mechanics plus heat
-// conduction) side by side give the cost of conduction.
+// conduction) side by side give the cost of conduction; settle3d and settle3d_periodic_xy (x and
+// y periodic instead of the 4 side planes) the cost of periodic boundaries.
 #include "cases.hpp"
 #include <benchmark/benchmark.h>
 
@@ -25,6 +26,11 @@ static void settle3d(benchmark::State& state, int nx, int ny, int nz, int warm) 
   run_steps(state, sim, warm);
 }
 
+static void settle3d_periodic_xy(benchmark::State& state, int nx, int ny, int nz, int warm) {
+  auto sim = grain::bench::make_settle3d(nx, ny, nz, true);
+  run_steps(state, sim, warm);
+}
+
 static void thermal3d(benchmark::State& state, int nx, int ny, int nz, int warm) {
   auto sim = grain::bench::make_thermal3d(nx, ny, nz);
   run_steps(state, sim, warm);
@@ -36,6 +42,7 @@ static void pack2d(benchmark::State& state, int nx, int ny, int warm) {
 }
 
 BENCHMARK_CAPTURE(settle3d, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(settle3d_periodic_xy, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(thermal3d, tiny, 10, 10, 10, 10)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pack2d, tiny, 20, 20, 10)->Unit(benchmark::kMillisecond);
 // A fixed number of steps, so that settle3d and thermal3d time the same motion; three repetitions
@@ -44,11 +51,19 @@ BENCHMARK_CAPTURE(settle3d, N1e4, 25, 25, 16, 1000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2000)
     ->Repetitions(3);
+BENCHMARK_CAPTURE(settle3d_periodic_xy, N1e4, 25, 25, 16, 1000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2000)
+    ->Repetitions(3);
 BENCHMARK_CAPTURE(thermal3d, N1e4, 25, 25, 16, 1000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2000)
     ->Repetitions(3);
 BENCHMARK_CAPTURE(settle3d, N1e5, 50, 50, 40, 1000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(400)
+    ->Repetitions(3);
+BENCHMARK_CAPTURE(settle3d_periodic_xy, N1e5, 50, 50, 40, 1000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(400)
     ->Repetitions(3);

@@ -48,7 +48,7 @@ namespace detail {
 /// The particles and walls of settle3d in `sim` (material m): spheres on the lattice with the
 /// R3-sequence velocities; in a thermal simulation columns i < nx/2 at 400 K, the others at 300 K.
 template <class Sim>
-void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz) {
+void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz, bool periodic_xy = false) {
   const double d = case_diameter, r = 0.5 * d, a = 1.02 * d, v0 = case_v0;
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -69,6 +69,10 @@ void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz) {
       }
   const Vec3 hi(nx * a, ny * a, nz * a);
   for (int dim = 0; dim < 3; ++dim) {
+    if (periodic_xy && dim < 2) {
+      sim.set_periodic(dim, 0.0, hi[dim]);
+      continue;
+    }
     sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::Unit(dim)}, {.name = "low", .material = m});
     sim.add_wall(walls::Plane{hi, -Vec3::Unit(dim)}, {.name = "high", .material = m});
   }
@@ -78,13 +82,14 @@ void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz) {
 /// settle3d: spheres d = 1 mm on a simple cubic lattice (spacing 1.02 d) in a box of 6 planes,
 /// Hertz-Mindlin with e = 0.5, mu = 0.5, E = 1e7 Pa, nu = 0.3, dt = 2.5e-6 s, gravity -z.
 /// Sphere orientations are not integrated (nothing reads them; the peers do not either).
+/// `periodic_xy`: periodic along x and y instead of the 4 side planes.
 template <class Search = search::CellList>
-Settle3d<Search> make_settle3d(int nx, int ny, int nz) {
+Settle3d<Search> make_settle3d(int nx, int ny, int nz, bool periodic_xy = false) {
   Settle3d<Search> sim({.time_step = case_time_step,
                         .gravity = Vec3(0, 0, -9.81),
                         .search = {.skin = 0.1 * case_diameter},
                         .track_orientation = false});
-  detail::fill_settle3d(sim, sim.add_material(case_material()), nx, ny, nz);
+  detail::fill_settle3d(sim, sim.add_material(case_material()), nx, ny, nz, periodic_xy);
   return sim;
 }
 

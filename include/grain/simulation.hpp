@@ -52,6 +52,7 @@
 #include <grain/particles/material.hpp>
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
+#include <grain/search/periodic.hpp>
 #include <grain/search/search.hpp>
 #include <grain/setup/insertion.hpp>
 #include <grain/simulation/components.hpp>
@@ -294,6 +295,7 @@ public:
     check_materials();
     VPStep::apply(*this, true);
     size_search();
+    check_periodic();
     for (auto& w : walls_) {
       w.update_temperature(time_);
       w.update_motion(time_);
@@ -387,6 +389,43 @@ private:
       }
     }
   }
+  /// Throws InputError if the periodic boundaries cannot work with this set-up: a box shorter
+  /// than twice the reach of a pair, Lees-Edwards without x and y periodic, a search that does
+  /// not list pairs across periodic boundaries, fluid cells (not periodic); sets the image offset.
+  void check_periodic() {
+    if (periodic_.shear_rate != 0.0 && !(periodic_.axis[0] && periodic_.axis[1]))
+      throw InputError("Simulation::set_lees_edwards: a shear with x or y not periodic is "
+                       "invalid; valid: set_periodic along x and y first");
+    if (!periodic_.on) return;
+    if constexpr (!search::PeriodicSearch<SearchT, D>)
+      throw InputError(std::string("Simulation::set_periodic: search = '") + SearchT::name +
+                       "' is invalid with periodic boundaries; valid: a search with a periodic "
+                       "build (search::CellList, VerletList or AllPairs; docs/periodic.md)");
+    if constexpr (Contact::needs_cell_radius)
+      if (heat_on_)
+        throw InputError("Simulation::set_periodic: periodic boundaries with a conduction model "
+                         "that needs fluid cells (Voronoi or porosity cell radii) are invalid; "
+                         "valid: a conduction model without cell radii");
+    const double need = 2.0 * (2.0 * r_max_ + skin_ + std::max(cutoff_, gap_reach_));
+    static constexpr const char* names = "xyz";
+    for (int d = 0; d < D; ++d)
+      if (periodic_.axis[d] && !(periodic_.length[d] >= need))
+        throw InputError(std::string("Simulation::set_periodic: the box length along ") + names[d] +
+                         " = " + detail::to_text(periodic_.length[d]) +
+                         " m is invalid; valid: at least 2 (2 R_max + reach) = " +
+                         detail::to_text(need) + " m (R_max = " + detail::to_text(r_max_) +
+                         " m; reach = skin + the largest gap a pair acts across)");
+    // clumps and rigid bodies place their members from a centre that does not wrap
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      if (std::apply([i](const auto&... f) { return (detail::field_driven(f[i]) || ... || false); },
+                     fields_))
+        throw InputError("Simulation::set_periodic: particle " + std::to_string(particles_.id[i]) +
+                         " is moved by a clump or a rigid body, which is invalid with periodic "
+                         "boundaries; valid: periodic boundaries with free particles (and walls)");
+    image_.resize(particles_.size());
+    shear_shift_.resize(particles_.size());
+    periodic_.move_to(time_);
+  }
   /// The largest radius present or to come, the skin and the conduction cutoff of the search.
   void size_search() {
     // the largest radius present or to come (the actual radii: for_each_size gives the smallest
@@ -445,6 +484,8 @@ private:
         call_stages<Hook::before_search>();
         ensure_groups();
       }
+      if (periodic_.sheared())
+        periodic_.move_to(IntegratorT::drift_before_forces ? time_ + dt : time_);
       Neighbours::update_neighbors(*this);
       ensure_groups();
       if (heat_on_) Heat::maybe_update_cells(*this);
@@ -472,6 +513,8 @@ private:
     ++step_;
     // time counts whole steps since the last initialisation (no drift from summing dt)
     time_ = static_cast<double>(step_ - step0_) * dt_ + time_offset_;
+    // the sliding images at the end of the step (what rebuilds after it and queries see)
+    if (periodic_.sheared()) periodic_.move_to(time_);
     interrupted_ = false;
     if constexpr (thermal) {
       for (auto& w : walls_)
@@ -562,6 +605,32 @@ public:
     // reading: the inserted ids join their groups again (at most the particles present or gone)
     inserts_.serialize(ar, cond_.groups, particles_.size() + life_.removed_ids.size());
     ar(counters_.steps, counters_.rebuilds, counters_.particle_steps, work_in_, elastic_start_);
+    if (periodic_.on) { // a periodic set-up: its state, marked
+      char mark[8] = {'P', 'E', 'R', 'I', 'O', 'D', 'I', 'C'};
+      const char expected[8] = {'P', 'E', 'R', 'I', 'O', 'D', 'I', 'C'};
+      ar(mark);
+      if constexpr (Archive::reading) {
+        if (std::memcmp(mark, expected, 8) != 0) {
+          const std::string what = "no periodic state (written by a simulation without "
+                                   "periodic boundaries)";
+          if constexpr (requires { ar.corrupt(what); })
+            ar.corrupt(what);
+          else
+            throw InputError("Simulation: the state read has " + what);
+        }
+      }
+      ar(image_, shear_shift_, periodic_.slide, periodic_.time, periodic_.built_slide);
+      if constexpr (Archive::reading) {
+        if (image_.size() != particles_.size() || shear_shift_.size() != particles_.size()) {
+          const std::string what = "periodic image counts of " + std::to_string(image_.size()) +
+                                   " particles for " + std::to_string(particles_.size());
+          if constexpr (requires { ar.corrupt(what); })
+            ar.corrupt(what);
+          else
+            throw InputError("Simulation: the state read has " + what);
+        }
+      }
+    }
     ar(initialized_); // true in a checkpoint; false in the copy a load falls back on
     if constexpr (Archive::reading) {
       // what later steps index with or divide by: a corrupt file fails here, not in a step
@@ -572,6 +641,8 @@ public:
           throw InputError("Simulation: the state read has " + bad + ", which is invalid");
       }
       Pass::find_fixed(*this);
+      if (periodic_.on) periodic_.move_to(time_);
+      Neighbours::measure_span(*this);
       interrupted_ = false; // a checkpoint holds whole steps
       wall_loads_.clear(list_.walls.size());
       origin_.clear();
@@ -610,6 +681,57 @@ public:
     if (particles_.inv_mass[i] != 0.0) return false;
     return !std::apply(
         [i](const auto&... f) { return (detail::field_driven(f[i]) || ... || false); }, fields_);
+  }
+
+  // ---------------------------------------------------------------- periodic boundaries
+  /// Makes axis `axis` (0 = x, 1 = y, 2 = z) periodic over [lo, hi) [m] (docs/periodic.md): a
+  /// particle leaving through one side enters through the other, and pairs interact through the
+  /// nearest image. Walls stay where they are (they have no images). The length hi - lo must be
+  /// at least 2 (2 R_max + reach), checked when the run starts. Particles outside the box are
+  /// wrapped into it at the start (their image counts keep their positions).
+  void set_periodic(int axis, double lo, double hi) {
+    detail::require(axis >= 0 && axis < D, "Simulation::set_periodic", "axis", axis,
+                    D == 2 ? "0 (x) or 1 (y)" : "0 (x), 1 (y) or 2 (z)");
+    detail::require_finite("Simulation::set_periodic", "lo", lo);
+    detail::require_finite("Simulation::set_periodic", "hi", hi);
+    detail::require(hi > lo, "Simulation::set_periodic", "hi", hi,
+                    "(lo, inf) m, lo = " + detail::to_text(lo) + " m");
+    periodic_.set_axis(axis, lo, hi - lo);
+    image_.resize(particles_.size());
+    shear_shift_.resize(particles_.size());
+    initialized_ = false;
+  }
+  /// Lees-Edwards boundaries: the periodic images above and below the box slide along x at
+  /// +-shear_rate L_y [m/s], driving a simple shear flow v_x = shear_rate y [1/s]. x and y must
+  /// be periodic (set_periodic).
+  void set_lees_edwards(double shear_rate) {
+    detail::require_finite("Simulation::set_lees_edwards", "shear_rate", shear_rate);
+    periodic_.move_to(time_); // the images slide at the new rate from now on
+    periodic_.shear_rate = shear_rate;
+    initialized_ = false;
+  }
+  /// The periodic box (PeriodicBox::on is false without periodic boundaries).
+  const PeriodicBox<D>& periodic() const { return periodic_; }
+  /// The separation x_j - x_i of particles i and j [m], through the nearest periodic image.
+  V separation(std::size_t i, std::size_t j) const {
+    return periodic_.separation(particles_.position[i], particles_.position[j]);
+  }
+  /// The number of periodic boxes particle i has crossed along each axis since it was added
+  /// (positive: towards +axis); zero along the axes that are not periodic.
+  std::array<std::int32_t, D> image(std::size_t i) const {
+    return i < image_.size() ? image_[i] : std::array<std::int32_t, D>{};
+  }
+  /// The position of particle i as if it had never been wrapped [m]: position + image L (under
+  /// Lees-Edwards plus the travel of the sliding boxes along x). Its change over time is the
+  /// particle's true displacement.
+  V unwrapped_position(std::size_t i) const {
+    V x = particles_.position[i];
+    if (i >= image_.size()) return x;
+    for (int d = 0; d < D; ++d)
+      if (periodic_.axis[d]) x[d] += static_cast<double>(image_[i][d]) * periodic_.length[d];
+    if (periodic_.sheared()) // the box of image_y slides at image_y gamma L_y
+      x[0] += shear_shift_[i] + static_cast<double>(image_[i][1]) * periodic_.slide;
+    return x;
   }
 
   // ---------------------------------------------------------------- stages and fields
@@ -806,6 +928,10 @@ private:
   /// Applies a particle permutation (or removal: a shorter perm) to the fields.
   void permute_fields(const std::vector<std::uint32_t>& perm) {
     std::apply([&](auto&... f) { (permute_values(f, perm), ...); }, fields_);
+    if (periodic_.on) {
+      permute_values(image_, perm);
+      permute_values(shear_shift_, perm);
+    }
   }
   /// True if a field excludes pairs from the list (field_traits<F>::excluded).
   static constexpr bool excluding_fields = []<class... F>(fields<F...>) {
@@ -874,8 +1000,18 @@ private:
   bool interrupted_ = false;
   double dt_ = 0.0, time_ = 0.0, time_offset_ = 0.0, end_time_ = 0.0;
   double r_max_ = 0.0, skin_ = 0.0, reach_ = 0.0;
-  double cutoff_ = 0.0;    ///< largest gap across which heat flows [m]
-  double gap_reach_ = 0.0; ///< largest gap across which an adhesive normal model acts [m]
+  double cutoff_ = 0.0;     ///< largest gap across which heat flows [m]
+  double gap_reach_ = 0.0;  ///< largest gap across which an adhesive normal model acts [m]
+  PeriodicBox<D> periodic_; ///< periodic boundaries (set_periodic)
+  std::vector<std::array<std::int32_t, D>> image_; ///< boxes crossed, per particle (periodic)
+  std::vector<double> shear_shift_;                ///< Lees-Edwards shift along x, per particle [m]
+  /// The force loop's list span with periodic boundaries, and the rows paired across the slowest
+  /// axis of the order (NeighbourRebuild::measure_span).
+  std::uint32_t near_span_ = 0, ring_rows_ = 0;
+  /// The periodic image of each list entry's partner, and the shifts of the 3^D images
+  /// (NeighbourRebuild::measure_span).
+  std::vector<std::uint8_t> image_code_;
+  std::array<V, 27> image_shift_{};
   bool heat_on_ = false;
   /// A conducting pair of a static packing (thermal analysis): particles i and j (or wall j).
   struct StaticConductance {

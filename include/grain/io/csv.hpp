@@ -54,7 +54,7 @@
 /// | quantity | column (particle 7) | unit |
 /// |---|---|---|
 /// | `io::position` | `x_7`, `y_7`, `z_7` | m |
-/// | `io::displacement` | `ux_7`, ... : position minus the position when the writer started (or when the particle first appeared to it, if it was not active then) | m |
+/// | `io::displacement` | `ux_7`, ... : position minus the position when the writer started (or when the particle first appeared to it, if it was not active then); with periodic boundaries, of the unwrapped position | m |
 /// | `io::velocity` | `vx_7`, ... | m/s |
 /// | `io::speed` | `speed_7` = \|v\| | m/s |
 /// | `io::acceleration` | `ax_7`, ... = F/m, the total force of the last step over the mass (0 for a fixed particle, inv_mass = 0; for a particle under prescribed motion its forces over its mass, not the prescribed acceleration) | m/s^2 |
@@ -225,7 +225,7 @@ template <class Sim>
 std::array<double, 3> position_of(const Sim& sim, std::size_t i) {
   std::array<double, 3> a{0.0, 0.0, 0.0};
   for (int d = 0; d < Sim::dimension; ++d)
-    a[static_cast<std::size_t>(d)] = sim.particles().position[i][d];
+    a[static_cast<std::size_t>(d)] = sim.unwrapped_position(i)[d]; // periodic: unwrapped
   return a;
 }
 
@@ -424,7 +424,7 @@ auto quantity_value(const Q& q, const Sim& sim, std::size_t i, const std::array<
   } else if constexpr (is_user_quantity<Q>::value) {
     return q.f(sim, i);
   } else if constexpr (is_displacement<Q>) {
-    Vec<Sim::dimension> u = sim.particles().position[i];
+    Vec<Sim::dimension> u = sim.unwrapped_position(i); // periodic: the true displacement
     for (int d = 0; d < Sim::dimension; ++d)
       u[d] -= ref[static_cast<std::size_t>(d)];
     return u;

@@ -31,6 +31,8 @@
 /// | `temperature` | SCALARS double (thermal simulations only) | K |
 /// | `heat_rate` | SCALARS double, net heat flow into the particle (thermal only) | W |
 /// | `heat_capacity` | SCALARS double, thermal inertia m c (thermal only) | J/K |
+/// | `unwrapped_position` | VECTORS double, with periodic boundaries only: the position as if never wrapped (Simulation::unwrapped_position) | m |
+/// | `image` | VECTORS double, with periodic boundaries only: the periodic boxes crossed along x, y, z (whole numbers) | - |
 ///
 /// Vectors always have three components (z = 0 in 2D). Fields are written in the order of the
 /// table whatever the order asked. `fields::all` adapts to the simulation; naming a thermal
@@ -361,6 +363,17 @@ void write_particles_vtk(const Sim& sim, const std::string& path, Fields fields 
     field(io::fields::temperature, [&](std::size_t i) { return p.temperature[i]; });
     field(io::fields::heat_rate, [&](std::size_t i) { return p.heat_rate[i]; });
     field(io::fields::heat_capacity, [&](std::size_t i) { return p.heat_capacity[i]; });
+  }
+  if (sim.periodic().on) { // where the wrapped particles would be, and the boxes they crossed
+    o.field("unwrapped_position", n,
+            [&](std::size_t k) { return detail::xyz(sim.unwrapped_position(at(k))); });
+    o.field("image", n, [&](std::size_t k) {
+      const auto c = sim.image(at(k));
+      std::array<double, 3> v{0.0, 0.0, 0.0};
+      for (std::size_t d = 0; d < c.size(); ++d)
+        v[d] = static_cast<double>(c[d]);
+      return v;
+    });
   }
   o.close(path);
 }

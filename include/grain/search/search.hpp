@@ -23,6 +23,7 @@
 #include <grain/core/error.hpp>
 #include <grain/particles/storage.hpp>
 #include <grain/search/neighbor_list.hpp>
+#include <grain/search/periodic.hpp>
 #include <grain/walls/walls.hpp>
 #include <limits>
 #include <numeric>
@@ -47,12 +48,16 @@ void add_wall_row(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
 namespace detail {
 template <int D>
 void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
-                     NeighborList& list);
+                     NeighborList& list, const PeriodicBox<D>* box = nullptr);
 template <int D>
 void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
                  double r_max, NeighborList& list);
 template <int D>
-std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size);
+void build_periodic(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                    double r_max, const PeriodicBox<D>& box, NeighborList& list);
+template <int D>
+std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size,
+                                      const PeriodicBox<D>* box = nullptr);
 } // namespace detail
 
 /// Every pair tested at every step (reference search; O(N^2)).
@@ -66,6 +71,11 @@ struct AllPairs {
   static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
                     double reach, double, NeighborList& list) {
     detail::build_all_pairs(p, walls, reach, list);
+  }
+  template <int D>
+  static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
+                    double reach, double, const PeriodicBox<D>& box, NeighborList& list) {
+    detail::build_all_pairs(p, walls, reach, list, &box);
   }
 };
 
@@ -91,6 +101,11 @@ struct VerletList {
                     double reach, double, NeighborList& list) {
     detail::build_all_pairs(p, walls, reach, list);
   }
+  template <int D>
+  static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
+                    double reach, double, const PeriodicBox<D>& box, NeighborList& list) {
+    detail::build_all_pairs(p, walls, reach, list, &box);
+  }
 };
 
 /// Linked cells with a skin; particles are re-sorted by cell at every rebuild.
@@ -106,16 +121,26 @@ struct CellList {
   static double skin(const Params& p, double r_max) { return p.skin > 0 ? p.skin : 0.2 * r_max; }
   static bool due(const Params&, long, bool moved_too_far) { return moved_too_far; }
   /// The particles sorted by cell (cells of 2 R_max + reach), unless `sort` is off.
+  /// With periodic boundaries (`box`), the grid spans the box along the periodic axes.
   template <int D>
   static std::vector<std::uint32_t> order(const Params& prm, const ParticleArrays<D>& p,
-                                          double reach, double r_max) {
+                                          double reach, double r_max,
+                                          const PeriodicBox<D>* box = nullptr) {
     if (!prm.sort || p.size() < 2) return {};
-    return detail::cell_order(p, 2.0 * r_max + reach);
+    return detail::cell_order(p, 2.0 * r_max + reach, box);
   }
   template <int D>
   static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
                     double reach, double r_max, NeighborList& list) {
     detail::build_cells(p, walls, reach, r_max, list);
+  }
+  template <int D>
+  static void build(const Params&, const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls,
+                    double reach, double r_max, const PeriodicBox<D>& box, NeighborList& list) {
+    if (box.on)
+      detail::build_periodic(p, walls, reach, r_max, box, list);
+    else
+      detail::build_cells(p, walls, reach, r_max, list);
   }
 };
 
@@ -142,6 +167,17 @@ concept Search = requires(const typename S::Params& prm, const ParticleArrays<D>
   { S::skin(prm, 1.0) } -> std::convertible_to<double>;
   { S::due(prm, 1L, true) } -> std::convertible_to<bool>;
   S::build(prm, p, walls, 1.0, 1.0, list);
+};
+
+/// True if the search S builds lists across periodic boundaries: it has, besides `build`,
+/// `S::build(prm, p, walls, reach, r_max, box, list)` with `box` the PeriodicBox, listing each
+/// pair whose nearest image (PeriodicBox::separation) is within reach, once. grain's own
+/// searches do.
+template <class S, int D>
+concept PeriodicSearch = requires(const typename S::Params& prm, const ParticleArrays<D>& p,
+                                  const std::vector<Wall<D>>& walls, const PeriodicBox<D>& box,
+                                  NeighborList& list) {
+  S::build(prm, p, walls, 1.0, 1.0, box, list);
 };
 
 /// True if the search S re-orders the particles before it builds (`S::order`).
@@ -189,7 +225,8 @@ inline void require_valid_list(const NeighborList& list, std::size_t n, const ch
 
 namespace detail {
 
-/// Uniform grid over the particle bounding box. Cells are numbered with the axis of the
+/// Uniform grid over the particle bounding box (along a periodic axis: over the box, with a
+/// whole number of cells of at least the size asked for). Cells are numbered with the axis of the
 /// smallest extent fastest and that of the largest slowest: sorted by cell, the particles of
 /// neighbouring slabs of cells along the slowest axis are then closest in memory (the list span,
 /// about two slabs, is smallest).
@@ -197,11 +234,12 @@ template <int D>
 struct Grid {
   Vec<D> lo;
   double cell = 1.0;
+  std::array<double, 3> size{1.0, 1.0, 1.0}; ///< cell size along each axis [m]
   std::array<long, 3> dims{1, 1, 1};
   std::array<int, 3> axis{0, 1, 2};    ///< the axes from fastest to slowest
   std::array<long, 3> sorted{1, 1, 1}; ///< dims in that order (1 beyond D)
 
-  void setup(const std::vector<Vec<D>>& x, double min_cell) {
+  void setup(const std::vector<Vec<D>>& x, double min_cell, const PeriodicBox<D>* box = nullptr) {
     Vec<D> mn = Vec<D>::Constant(std::numeric_limits<double>::max());
     Vec<D> mx = Vec<D>::Constant(-std::numeric_limits<double>::max());
     for (const auto& p : x) {
@@ -209,6 +247,12 @@ struct Grid {
       mx = mx.cwiseMax(p);
     }
     if (x.empty()) mn = mx = Vec<D>::Zero();
+    if (box)
+      for (int d = 0; d < D; ++d)
+        if (box->axis[d]) {
+          mn[d] = box->lo[d];
+          mx[d] = box->hi(d);
+        }
     lo = mn;
     cell = min_cell;
     // keep the number of cells within a few times the number of particles
@@ -220,14 +264,21 @@ struct Grid {
         // overflow the integer; the loop then coarsens the grid)
         // (an extent beyond the largest double, from particles near +-1e308, is taken as it)
         const double extent = std::min(mx[d] - mn[d], std::numeric_limits<double>::max());
-        dims[d] =
-            std::max<long>(1, static_cast<long>(std::min(std::floor(extent / cell), 1e15)) + 1);
+        if (box && box->axis[d]) { // whole cells over the box
+          dims[d] = std::max<long>(1, static_cast<long>(std::min(std::floor(extent / cell), 1e15)));
+          size[d] = extent / static_cast<double>(dims[d]);
+        } else {
+          dims[d] =
+              std::max<long>(1, static_cast<long>(std::min(std::floor(extent / cell), 1e15)) + 1);
+          size[d] = cell;
+        }
         total *= static_cast<double>(dims[d]);
       }
       if (total <= max_cells) break;
       cell *= 1.5;
     }
-    // stable: equal extents keep x fastest
+    // stable: equal extents keep x fastest (periodic axes too: the pairs across the boundary of
+    // the slowest one join the first rows to the last, which the force loop runs first)
     std::stable_sort(axis.begin(), axis.begin() + D,
                      [&](int a, int b) { return mx[a] - mn[a] < mx[b] - mn[b]; });
     for (int k = 0; k < D; ++k)
@@ -236,7 +287,7 @@ struct Grid {
   long coord(const Vec<D>& p, int d) const {
     // clamped before the cast: a particle outside the grid takes the nearest cell (and one
     // whose offset is not a number, inf / inf, the first)
-    const double c = (p[d] - lo[d]) / cell;
+    const double c = (p[d] - lo[d]) / size[d];
     if (!(c > 0.0)) return 0;
     return c < static_cast<double>(dims[d] - 1) ? static_cast<long>(c) : dims[d] - 1;
   }
@@ -245,6 +296,13 @@ struct Grid {
     for (int k = D - 2; k >= 0; --k)
       c = c * sorted[k] + coord(p, axis[k]);
     return c;
+  }
+  /// Index of the cell with coordinates c[d] along the axes d = 0 .. D - 1.
+  long index_of_coords(const std::array<long, 3>& c) const {
+    long k = c[axis[D - 1]];
+    for (int q = D - 2; q >= 0; --q)
+      k = k * sorted[q] + c[axis[q]];
+    return k;
   }
   /// Index of the cell with coordinates c along the sorted axes (fastest first).
   long index_sorted(long c0, long c1, long c2) const {
@@ -258,16 +316,20 @@ struct Grid {
   }
 };
 
-/// O(N^2) build: partners j > i closer than r_i + r_j + reach.
+/// O(N^2) build: partners j > i closer than r_i + r_j + reach (through the nearest image with
+/// periodic boundaries).
 template <int D>
 void build_all_pairs(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
-                     NeighborList& list) {
+                     NeighborList& list, const PeriodicBox<D>* box) {
+  const bool periodic = box && box->on;
   const std::size_t n = p.size();
   list.clear(n);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const double rs = p.radius[i] + p.radius[j] + reach;
-      if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+      const Vec<D> d = periodic ? box->separation(p.position[i], p.position[j])
+                                : Vec<D>(p.position[j] - p.position[i]);
+      if (d.squaredNorm() < rs * rs) {
         list.partners.push_back(static_cast<std::uint32_t>(j));
         list.max_span = std::max<std::uint32_t>(list.max_span, static_cast<std::uint32_t>(j - i));
       }
@@ -308,9 +370,10 @@ CellMembers cell_members(const Grid<D>& grid, const std::vector<Vec<D>>& x) {
 /// Permutation that sorts particles by cell (see Grid for the order of the axes); stable within
 /// a cell.
 template <int D>
-std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size) {
+std::vector<std::uint32_t> cell_order(const ParticleArrays<D>& p, double cell_size,
+                                      const PeriodicBox<D>* box) {
   Grid<D> grid;
-  grid.setup(p.position, cell_size);
+  grid.setup(p.position, cell_size, box && box->on ? box : nullptr);
   return cell_members(grid, p.position).members;
 }
 
@@ -345,6 +408,104 @@ void build_cells(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, 
           }
         }
     std::sort(row.begin(), row.end());
+    for (auto j : row) {
+      list.partners.push_back(j);
+      list.max_span = std::max<std::uint32_t>(list.max_span, static_cast<std::uint32_t>(j - i));
+    }
+    list.offsets.push_back(static_cast<std::uint32_t>(list.partners.size()));
+    add_wall_row(p, walls, reach, list, i);
+  }
+}
+
+/// Linked-cell build across periodic boundaries (box.on): partners j > i whose nearest image is
+/// closer than r_i + r_j + reach. The cells around i wrap along the periodic axes; with a
+/// Lees-Edwards shear, the cells across the y boundary are those around x_i -+ offset. Rows
+/// ascending, each pair once. The positions are inside the box along the periodic axes (the
+/// simulation wraps them before it builds).
+template <int D>
+void build_periodic(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
+                    double r_max, const PeriodicBox<D>& box, NeighborList& list) {
+  const std::size_t n = p.size();
+  list.clear(n);
+  Grid<D> grid;
+  grid.setup(p.position, 2.0 * r_max + reach, &box);
+  const CellMembers cells = cell_members(grid, p.position);
+  const auto& head = cells.start;
+  const auto& members = cells.members;
+  // the coordinates along axis d around coordinate c (wrapped on a periodic axis), each once
+  auto around = [&](int d, long c, std::array<long, 3>& out) {
+    int m = 0;
+    for (long o = -1; o <= 1; ++o) {
+      long q = c + o;
+      if (box.axis[d])
+        q = ((q % grid.dims[d]) + grid.dims[d]) % grid.dims[d];
+      else if (q < 0 || q >= grid.dims[d])
+        continue;
+      bool seen = false;
+      for (int k = 0; k < m; ++k)
+        seen = seen || out[k] == q;
+      if (!seen) out[m++] = q;
+    }
+    return m;
+  };
+  std::vector<std::uint32_t> row;
+  for (std::size_t i = 0; i < n; ++i) {
+    row.clear();
+    const Vec<D>& xi = p.position[i];
+    std::array<std::array<long, 3>, 3> near{};
+    std::array<int, 3> count{1, 1, 1};
+    for (int d = 0; d < D; ++d)
+      count[d] = around(d, grid.coord(xi, d), near[d]);
+    auto scan = [&](const std::array<long, 3>& c) {
+      const long cell = grid.index_of_coords(c);
+      for (std::uint32_t k = head[cell]; k < head[cell + 1]; ++k) {
+        const std::uint32_t j = members[k];
+        if (j <= i) continue;
+        const double rs = p.radius[i] + p.radius[j] + reach;
+        if (box.separation(xi, p.position[j]).squaredNorm() < rs * rs) row.push_back(j);
+      }
+    };
+    // the rows of cells along y, each with its cells along x (shifted across a sheared boundary)
+    const long cy = D >= 2 ? grid.coord(xi, 1) : 0;
+    for (long oy = -1; oy <= (D >= 2 ? 1 : -1); ++oy) {
+      std::array<long, 3> nx = near[0];
+      int cx = count[0];
+      long qy = 0;
+      if constexpr (D >= 2) {
+        qy = cy + oy;
+        const long wy = qy < 0 ? -1 : (qy >= grid.dims[1] ? 1 : 0);
+        if (!box.axis[1] && wy != 0) continue;
+        qy -= wy * grid.dims[1];
+        if (box.sheared() && wy != 0) {
+          Vec<D> shifted = xi;
+          shifted[0] -= static_cast<double>(wy) * box.offset;
+          shifted[0] -= box.length[0] * std::floor((shifted[0] - box.lo[0]) / box.length[0]);
+          cx = around(0, grid.coord(shifted, 0), nx);
+        } else {
+          // a y coordinate met twice (few cells along y) is scanned once
+          bool seen = false;
+          for (long o = -1; o < oy; ++o) {
+            long q = cy + o;
+            const long w = q < 0 ? -1 : (q >= grid.dims[1] ? 1 : 0);
+            if (!box.axis[1] && w != 0) continue;
+            if (box.sheared() && w != 0) continue;
+            seen = seen || q - w * grid.dims[1] == qy;
+          }
+          if (seen) continue;
+        }
+      }
+      for (int a = 0; a < cx; ++a) {
+        if constexpr (D == 2) {
+          scan({nx[a], qy, 0});
+        } else {
+          for (int b = 0; b < count[2]; ++b)
+            scan({nx[a], qy, near[2][b]});
+        }
+      }
+      if constexpr (D < 2) break;
+    }
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
     for (auto j : row) {
       list.partners.push_back(j);
       list.max_span = std::max<std::uint32_t>(list.max_span, static_cast<std::uint32_t>(j - i));

@@ -23,6 +23,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace grain::detail {
@@ -92,8 +93,11 @@ struct ContactPass {
     // span (the rows of chunk c then write to chunks c and c + 1 only); two spans while that
     // leaves 16 chunks or more (the rows of a chunk's last span have partners beyond it, which
     // come from memory; fewer such rows measured 2 to 4 % faster at N = 1e5); at most 64 chunks.
-    const long span = static_cast<long>(list.max_span);
-    const long chunk = std::max({span, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
+    // periodic boundaries: the pairs across the slowest axis of the order (rows [0, ring_rows_)
+    // to the top rows) are left out of the span; chunk 0, which holds those rows, runs alone
+    const long span = static_cast<long>(s.periodic_.on ? s.near_span_ : list.max_span);
+    const long ring = s.periodic_.on ? static_cast<long>(s.ring_rows_) : 0;
+    const long chunk = std::max({span, ring, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
     // the rows' own data and the partners beyond the chunk are requested some rows in advance
     // if a span of particle data is too large for the caches (a layer of cells in 3D); with
     // partners close by (a 2D row of cells) all of it is in the caches already
@@ -106,7 +110,7 @@ struct ContactPass {
     };
     detail::run_paired_chunks(
         n, chunk, work, [&](long b, long e) { contact_rows(s, b, e, ahead, span); },
-        n >= parallel_threshold);
+        n >= parallel_threshold, ring > 0);
   }
 
   /// Adds gravity and global damping (unless the fused pass has `prefilled` them), convection,
@@ -218,7 +222,7 @@ struct ContactPass {
                                          const std::vector<A>& w) {
     const auto& p = s.particles_;
     const double rs = p.radius[i] + p.radius[j];
-    if ((p.position[j] - p.position[i]).squaredNorm() >= rs * rs) return false;
+    if (s.separation(i, j).squaredNorm() >= rs * rs) return false;
     pair_geometry_of(s, i, j, g, v, w);
     return true;
   }
@@ -230,12 +234,39 @@ struct ContactPass {
                                             ContactGeometry<D>& g, const std::vector<V>& v,
                                             const std::vector<A>& w) {
     const auto& p = s.particles_;
-    const V d = p.position[j] - p.position[i];
+    V d = p.position[j] - p.position[i];
+    const V* vj = &v[j];
+    V vj_image;
+    if (s.periodic_.on) [[unlikely]] { // the nearest image of j
+      if (!s.periodic_.sheared()) [[likely]]
+        d = PeriodicBox<D>::minimum_image(d, s.periodic_.wrap_length, s.periodic_.wrap_inverse);
+      else if (nearest_image(s, d, v[j], vj_image)) // out of line: a sliding image
+        vj = &vj_image;
+    }
     const double dist = std::sqrt(d.squaredNorm());
     pair_geometry<D>(g, p.position[i], V(d * (1.0 / dist)), dist, p.radius[i], p.radius[j],
-                     p.mass[i], p.mass[j], v[i], v[j], w[i], w[j]);
+                     p.mass[i], p.mass[j], v[i], *vj, w[i], w[j]);
     if (s.has_fixed_) [[unlikely]] // out of line: the contact pass stays as without the check
       g.m_eff = effective_mass(s, i, j, g.m_eff);
+  }
+  /// Turns the separation d = x_j - x_i into that of the nearest image of j; true if that image
+  /// slides (Lees-Edwards), its velocity then in `vj_image` (vj plus the sliding speed).
+  [[gnu::noinline]] static bool nearest_image(const Sim& s, V& d, const V& vj, V& vj_image) {
+    double image_vx = 0.0;
+    d = s.periodic_.nearest(d, image_vx);
+    if (image_vx == 0.0) return false;
+    vj_image = vj;
+    vj_image[0] += image_vx;
+    return true;
+  }
+  /// The velocity of particle j's image that pair (i, j) sees [m/s]: v[j], plus the sliding
+  /// speed of a Lees-Edwards image.
+  GRAIN_INLINE static const V& partner_velocity(const Sim& s, std::size_t i, std::size_t j,
+                                                const std::vector<V>& v, V& image) {
+    if (!s.periodic_.sheared()) [[likely]]
+      return v[j];
+    V d = s.particles_.position[j] - s.particles_.position[i];
+    return nearest_image(s, d, v[j], image) ? image : v[j];
   }
   /// Geometry of the contact of particle i with wall k if they touch, with the velocities `v`,
   /// `w` (by default the particles' own).
@@ -257,7 +288,7 @@ struct ContactPass {
     if constexpr (Contact::cohesive) {
       const auto& p = s.particles_;
       const double rs = p.radius[i] + p.radius[j] + s.gap_reach_;
-      if ((p.position[j] - p.position[i]).squaredNorm() >= rs * rs) return false;
+      if (s.separation(i, j).squaredNorm() >= rs * rs) return false;
       pair_geometry_of(s, i, j, g, p.velocity, p.omega);
       return true;
     } else {
@@ -370,8 +401,11 @@ struct ContactPass {
     const auto& wf = s.force_omega();
     ContactGeometry<D> gc; // local to the contact: kept in registers
     pair_geometry_of(s, i, j, gc, vf, wf);
-    if constexpr (predicts_velocity && Contact::has_torque)
-      set_slip_velocity<D>(gc, p.velocity[i], p.velocity[j], p.omega[i], p.omega[j]);
+    if constexpr (predicts_velocity && Contact::has_torque) {
+      V image;
+      set_slip_velocity<D>(gc, p.velocity[i], partner_velocity(s, i, j, p.velocity, image),
+                           p.omega[i], p.omega[j]);
+    }
     const Law law = pair_law(s, e, i, j);
     History& h = s.hist(s.hist_.pair, e);
     auto r = evaluate(s, gc, law, h);
@@ -382,7 +416,8 @@ struct ContactPass {
       p.torque[j] += r.torque_j;
     }
     if (s.tracking_) {
-      double work = r.force.dot(vf[i] - vf[j]);
+      V image;
+      double work = r.force.dot(vf[i] - partner_velocity(s, i, j, vf, image));
       if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
       s.work_rows_[i] += work;
     }
@@ -488,7 +523,7 @@ struct ContactPass {
         const auto j = s.list_.partners[e];
         double rs = p.radius[i] + p.radius[j];
         if constexpr (Contact::cohesive) rs += s.gap_reach_; // the law acts across the gap
-        if ((p.position[j] - p.position[i]).squaredNorm() < rs * rs) {
+        if (s.separation(i, j).squaredNorm() < rs * rs) {
           pair_contact(s, e, i, j); // the geometry is made there, once
           continue;
         }
@@ -510,6 +545,12 @@ struct ContactPass {
   /// of a pair that no longer touches is cleared (written only if it is not blank already).
   GRAIN_INLINE static void rows_collected(Sim& s, long begin, long end, long ahead, long cold) {
     auto& p = s.particles_;
+    const bool periodic = s.periodic_.on;
+    const auto& box = s.periodic_;
+    // the image of each entry's partner, found at the list build (NeighbourRebuild::measure_span)
+    const std::uint8_t* image_code = s.image_code_.data();
+    const V* image_shift = s.image_shift_.data();
+    const bool sheared = box.sheared();
     constexpr std::uint32_t capacity = 64;
     std::uint32_t hit_entry[capacity], hit_row[capacity];
     std::uint32_t nhit = 0;
@@ -525,13 +566,23 @@ struct ContactPass {
         wall_contacts(s, static_cast<std::size_t>(r));
       last = first;
     };
-    auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi,
-                    double ri) GRAIN_INLINE_LAMBDA {
+    // the distance tests of entries [b, b_end) of row i; `images` (std::true_type with periodic
+    // boundaries): through the nearest image of the partner. Two loops, so that the one without
+    // images is the loop of a simulation without periodic boundaries.
+    auto test_entries = [&](auto images, std::uint32_t b, std::uint32_t b_end, std::uint32_t i,
+                            const V& xi, double ri) GRAIN_INLINE_LAMBDA {
       for (auto e = b; e < b_end; ++e) {
         const auto j = s.list_.partners[e];
         double rs = ri + p.radius[j];
         if constexpr (Contact::cohesive) rs += s.gap_reach_; // the law acts across the gap
-        const bool t = (p.position[j] - xi).squaredNorm() < rs * rs;
+        V d = p.position[j] - xi;
+        if constexpr (decltype(images)::value) {
+          if (sheared) [[unlikely]]
+            d = box.nearest(d); // sliding images: the nearest one now
+          else
+            d -= image_shift[image_code[e]]; // the same bits as PeriodicBox::minimum_image
+        }
+        const bool t = d.squaredNorm() < rs * rs;
         hit_entry[nhit] = e;
         hit_row[nhit] = i;
         nhit += t;
@@ -544,6 +595,13 @@ struct ContactPass {
         }
       }
     };
+    auto test = [&](std::uint32_t b, std::uint32_t b_end, std::uint32_t i, const V& xi, double ri)
+                    GRAIN_INLINE_LAMBDA {
+                      if (periodic) [[unlikely]]
+                        test_entries(std::true_type{}, b, b_end, i, xi, ri);
+                      else
+                        test_entries(std::false_type{}, b, b_end, i, xi, ri);
+                    };
     for (long ii = end - 1; ii >= begin; --ii) {
       request_ahead(s, ii, ahead, begin, cold, end);
       const auto i = static_cast<std::uint32_t>(ii);

@@ -99,7 +99,7 @@ struct HeatStep {
   static double gap_pair_conductance(const Sim& s, std::size_t i, std::size_t j, std::size_t e,
                                      ContactGeometry<D>& g) {
     const auto& p = s.particles_;
-    const V d = p.position[j] - p.position[i];
+    const V d = s.separation(i, j);
     const double dist = d.norm();
     const double gap = dist - p.radius[i] - p.radius[j];
     if (!(gap < s.cutoff_) || dist <= 0) return 0.0;

@@ -277,6 +277,10 @@ struct LifecycleStep {
     p.inv_inertia.push_back(ps.fixed ? 0.0 : 1.0 / inertia);
     p.material.push_back(ps.material);
     std::apply([](auto&... f) { (f.emplace_back(), ...); }, s.fields_);
+    if (s.periodic_.on) {
+      s.image_.emplace_back();
+      s.shear_shift_.push_back(0.0);
+    }
     s.vprops_.append();
     if constexpr (thermal) {
       const double c = mass * m.heat_capacity;

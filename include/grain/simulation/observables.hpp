@@ -162,13 +162,15 @@ public:
   }
   /// Gravitational potential energy relative to the origin [J].
   /// With gravity that changes in time (set_gravity with a function), the potential of the
-  /// current gravity.
+  /// current gravity. With periodic boundaries, of the unwrapped positions (a particle that
+  /// wraps along a tilted gravity keeps the energy it lost falling).
   double potential_energy() const {
     const Sim& s = self();
     double e = 0.0;
     const V g = s.gravity();
     for (std::size_t i = 0; i < s.particles_.size(); ++i)
-      e -= s.particles_.mass[i] * g.dot(s.particles_.position[i]);
+      e -= s.particles_.mass[i] *
+           g.dot(s.periodic_.on ? s.unwrapped_position(i) : V(s.particles_.position[i]));
     return e;
   }
 

@@ -57,8 +57,13 @@ inline std::pair<long, long> static_share(long n) {
 /// it (..., 4, 5, 2, 3, 0, 1), while the data of both are still in the caches (at N = 1e6 the
 /// data of a step do not fit, and running all even chunks before all odd ones read much of them
 /// twice).
+///
+/// `first_alone`: the rows of chunk 0 may also write anywhere above (the pairs across a periodic
+/// boundary along the slowest axis of the order); chunk 0 then runs before every other chunk,
+/// whose writes all come after its own, for any number of threads.
 template <class Work, class Run>
-void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, bool parallel) {
+void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, bool parallel,
+                       bool first_alone = false) {
   const long nchunks = (n + chunk - 1) / chunk;
   auto weight = [&](long c) { return work(c * chunk, std::min(n, (c + 1) * chunk)); };
   std::array<std::atomic<int>, 64> done{}; // at most 64 chunks
@@ -96,8 +101,14 @@ void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, boo
     // from the top down, each even chunk followed by the odd one above it; an odd last chunk
     // waits for the next thread's first one, which that thread runs last: it goes last too
     const long deferred = (b - 1) % 2 == 1 && b < nchunks && b - 1 >= a ? b - 1 : -1;
+    if (first_alone) { // chunk 0 first, on its thread; the others wait for it
+      if (a == 0)
+        one(0);
+      else
+        wait_for(done[0]);
+    }
     for (long c = (b - 1) - (b - 1) % 2; c >= a; c -= 2) {
-      one(c);
+      if (c > 0 || !first_alone) one(c);
       if (c + 1 < b && c + 1 != deferred) one(c + 1);
     }
     if (a % 2 == 1 && a < b && a != deferred) one(a);

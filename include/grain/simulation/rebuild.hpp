@@ -61,7 +61,9 @@ struct NeighbourRebuild {
       double dw = 0.0;
       for (const auto& w : s.walls_)
         dw = std::max(dw, w.displacement_since_snapshot(s.reach_));
-      far = 2.0 * dp >= s.skin_ || dp + dw >= s.skin_;
+      // the sliding images of a Lees-Edwards box move the pairs across y like a wall
+      const double de = s.periodic_.sheared() ? s.periodic_.travel() : 0.0;
+      far = 2.0 * dp + de >= s.skin_ || dp + dw >= s.skin_;
     }
     if (SearchT::due(s.params_.search, s.steps_since_rebuild_, far)) rebuild(s);
   }
@@ -73,7 +75,7 @@ struct NeighbourRebuild {
     for (std::size_t i = 0; i + 1 < s.list_.offsets.size(); ++i)
       for (const auto e : s.list_.pair_entries(i)) {
         const auto j = s.list_.partners[e];
-        if (p.position[i] != p.position[j]) [[likely]]
+        if (s.separation(i, j) != V::Zero()) [[likely]]
           continue;
         const std::string what = "Simulation: particles " + std::to_string(p.id[i]) + " and " +
                                  std::to_string(p.id[j]) + " have the same centre (" +
@@ -91,6 +93,7 @@ struct NeighbourRebuild {
     Pass::find_fixed(s);
     s.require_finite_state(); // a non-finite position has no cell
     s.collect_wall_loads();   // the loads of the last evaluation outlive the list entries
+    if (s.periodic_.on) wrap(s);
     NeighborList old = std::move(s.list_);
     Histories old_hist = std::move(s.hist_);
     // the new list will be about as long as the old one (one allocation instead of doublings)
@@ -101,7 +104,13 @@ struct NeighbourRebuild {
     std::vector<std::uint32_t> perm;
     const double reach = s.skin_ + std::max(s.cutoff_, s.gap_reach_);
     if constexpr (search::Reorders<SearchT, D>) {
-      perm = SearchT::order(s.params_.search, p, reach, s.r_max_);
+      if constexpr (requires {
+                      SearchT::order(s.params_.search, p, reach, s.r_max_, &s.periodic_);
+                    })
+        perm = SearchT::order(s.params_.search, p, reach, s.r_max_,
+                              s.periodic_.on ? &s.periodic_ : nullptr);
+      else
+        perm = SearchT::order(s.params_.search, p, reach, s.r_max_);
       if (!perm.empty()) {
         p.permute(perm);
         s.permute_fields(perm);
@@ -112,9 +121,17 @@ struct NeighbourRebuild {
         }
       }
     }
-    SearchT::build(s.params_.search, p, s.walls_, reach, s.r_max_, s.list_);
+    if constexpr (search::PeriodicSearch<SearchT, D>) {
+      if (s.periodic_.on)
+        SearchT::build(s.params_.search, p, s.walls_, reach, s.r_max_, s.periodic_, s.list_);
+      else
+        SearchT::build(s.params_.search, p, s.walls_, reach, s.r_max_, s.list_);
+    } else {
+      SearchT::build(s.params_.search, p, s.walls_, reach, s.r_max_, s.list_);
+    }
     if constexpr (!search::builtin<SearchT>) search::require_valid_list(s.list_, n, SearchT::name);
     if constexpr (excluding_fields) drop_excluded_pairs(s);
+    measure_span(s);
     require_distinct_centres(s);
     // carry the histories of the old list over, by particle identity (origin_ maps the indices
     // after a removal or activation to those of the old list)
@@ -131,6 +148,7 @@ struct NeighbourRebuild {
       s.hist_.reset(s.list_);
     }
     s.snapshot_ = p.position;
+    s.periodic_.built_slide = s.periodic_.slide;
     s.wall_loads_.reset(s.list_.walls.size());
     // reach of a plane rotation: farthest particle from any wall pivot
     s.reach_ = 0.0;
@@ -147,6 +165,73 @@ struct NeighbourRebuild {
     s.origin_.clear();
     if (s.vprops_.per_particle) refresh_pair_cache(s);
     if (s.heat_on_) Heat::update_cells(s);
+  }
+
+  /// With periodic boundaries, what the force loop needs of the list: the span of its chunks,
+  /// the largest j - i of the pairs with j - i <= N/2 (`near_span_`), and the rows holding the
+  /// others (`ring_rows_`: rows [0, ring_rows_) pair with the top rows across the slowest axis of
+  /// the order); and for each entry the periodic image of its partner (`image_code_`, the shift
+  /// `image_shift_[code]` taken off x_j - x_i; fixed until the next build, as positions are only
+  /// wrapped at builds; not used under Lees-Edwards, whose images move).
+  static void measure_span(Sim& s) {
+    s.near_span_ = s.list_.max_span;
+    s.ring_rows_ = 0;
+    if (!s.periodic_.on) {
+      s.image_code_.clear();
+      return;
+    }
+    const auto& box = s.periodic_;
+    for (int c = 0; c < 27; ++c) {
+      V shift = V::Zero();
+      int code = c;
+      for (int k = 0; k < D; ++k, code /= 3)
+        shift[k] = static_cast<double>(code % 3 - 1) * box.wrap_length[k];
+      s.image_shift_[static_cast<std::size_t>(c)] = shift;
+    }
+    const std::size_t n = s.list_.rows();
+    const auto& x = s.particles_.position;
+    s.image_code_.resize(s.list_.partners.size());
+    std::uint32_t near = 0, ring = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      for (const auto e : s.list_.pair_entries(i)) {
+        const auto j = s.list_.partners[e];
+        const auto d = static_cast<std::uint32_t>(j - i);
+        if (2 * static_cast<std::size_t>(d) <= n)
+          near = std::max(near, d);
+        else
+          ring = static_cast<std::uint32_t>(i + 1);
+        const V r = x[j] - x[i];
+        const V m = PeriodicBox<D>::minimum_image(r, box.wrap_length, box.wrap_inverse);
+        int code = 0;
+        for (int k = D - 1; k >= 0; --k) // the boxes taken off: (r - m) / L, -1, 0 or 1
+          code = 3 * code + 1 +
+                 (box.axis[k] ? static_cast<int>(std::lround((r[k] - m[k]) * box.wrap_inverse[k]))
+                              : 0);
+        s.image_code_[e] = static_cast<std::uint8_t>(code);
+      }
+    s.near_span_ = near;
+    s.ring_rows_ = ring;
+  }
+
+  /// Brings every particle back into the periodic box (PeriodicBox::wrap), counting the boxes
+  /// crossed; under Lees-Edwards the velocities the forces see change with the velocities.
+  static void wrap(Sim& s) {
+    auto& p = s.particles_;
+    const bool sheared_prediction = s.periodic_.sheared() && s.prefilled_;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double vx = p.velocity[i][0];
+      if (!s.periodic_.wrap(p.position[i], p.velocity[i], s.image_[i], s.shear_shift_[i])) {
+        const std::string what =
+            "Simulation: particle " + std::to_string(p.id[i]) + " at position (" +
+            detail::vector_text(p.position[i]) +
+            ") m is more than 1e9 periodic boxes away at t = " + detail::to_text(s.time_) +
+            " s; valid: a position within 1e9 box lengths of the box";
+        if (s.initialized_) throw NumericalError(what);
+        throw InputError(what);
+      }
+      if constexpr (Sim::predicts_velocity)
+        if (sheared_prediction) s.vf_[i][0] += p.velocity[i][0] - vx;
+    }
   }
 
   /// The build of an initialisation: carries out the removals requested since the last build

@@ -73,7 +73,7 @@ struct StateCheck {
       for (const auto e : s.list_.pair_entries(i)) {
         const auto j = s.list_.partners[e];
         const double reach = std::max(p.radius[i], p.radius[j]);
-        const double d2 = (p.position[j] - p.position[i]).squaredNorm();
+        const double d2 = s.separation(i, j).squaredNorm();
         if (d2 > reach * reach || (s.fixed_particle(i) && s.fixed_particle(j))) [[likely]]
           continue;
         const double d = std::sqrt(d2);
@@ -116,7 +116,7 @@ struct StateCheck {
         for (const auto e : s.list_.pair_entries(i)) {
           const auto j = s.list_.partners[e];
           const double rs = std::min(p.radius[i], p.radius[j]);
-          const double delta = p.radius[i] + p.radius[j] - (p.position[j] - p.position[i]).norm();
+          const double delta = p.radius[i] + p.radius[j] - s.separation(i, j).norm();
           if (delta <= limit * rs || !(fi || fresh(j)) ||
               (s.fixed_particle(i) && s.fixed_particle(j)))
             continue;
