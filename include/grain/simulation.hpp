@@ -1007,7 +1007,7 @@ private:
   std::vector<double> shear_shift_;                ///< Lees-Edwards shift along x, per particle [m]
   /// The force loop's list span with periodic boundaries, and the rows paired across the slowest
   /// axis of the order (NeighbourRebuild::measure_span).
-  std::uint32_t near_span_ = 0, ring_rows_ = 0;
+  std::uint32_t near_span_ = 0, ring_rows_ = 0, ring_from_ = 0;
   /// The periodic image of each list entry's partner, and the shifts of the 3^D images
   /// (NeighbourRebuild::measure_span).
   std::vector<std::uint8_t> image_code_;

@@ -169,13 +169,14 @@ struct NeighbourRebuild {
 
   /// With periodic boundaries, what the force loop needs of the list: the span of its chunks,
   /// the largest j - i of the pairs with j - i <= N/2 (`near_span_`), and the rows holding the
-  /// others (`ring_rows_`: rows [0, ring_rows_) pair with the top rows across the slowest axis of
-  /// the order); and for each entry the periodic image of its partner (`image_code_`, the shift
+  /// others (`ring_rows_`: rows [0, ring_rows_) pair with rows [ring_from_, N) across the slowest
+  /// axis of the order); and for each entry the periodic image of its partner (`image_code_`, the shift
   /// `image_shift_[code]` taken off x_j - x_i; fixed until the next build, as positions are only
   /// wrapped at builds; not used under Lees-Edwards, whose images move).
   static void measure_span(Sim& s) {
     s.near_span_ = s.list_.max_span;
     s.ring_rows_ = 0;
+    s.ring_from_ = 0;
     if (!s.periodic_.on) {
       s.image_code_.clear();
       return;
@@ -191,15 +192,17 @@ struct NeighbourRebuild {
     const std::size_t n = s.list_.rows();
     const auto& x = s.particles_.position;
     s.image_code_.resize(s.list_.partners.size());
-    std::uint32_t near = 0, ring = 0;
+    std::uint32_t near = 0, ring = 0, ring_from = static_cast<std::uint32_t>(n);
     for (std::size_t i = 0; i < n; ++i)
       for (const auto e : s.list_.pair_entries(i)) {
         const auto j = s.list_.partners[e];
         const auto d = static_cast<std::uint32_t>(j - i);
         if (2 * static_cast<std::size_t>(d) <= n)
           near = std::max(near, d);
-        else
+        else {
           ring = static_cast<std::uint32_t>(i + 1);
+          ring_from = std::min(ring_from, static_cast<std::uint32_t>(j));
+        }
         const V r = x[j] - x[i];
         const V m = PeriodicBox<D>::minimum_image(r, box.wrap_length, box.wrap_inverse);
         int code = 0;
@@ -211,6 +214,7 @@ struct NeighbourRebuild {
       }
     s.near_span_ = near;
     s.ring_rows_ = ring;
+    s.ring_from_ = ring_from;
   }
 
   /// Brings every particle back into the periodic box (PeriodicBox::wrap), counting the boxes
