@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fails (exit 1) listing every C++ file of the project (include/, tests/, examples/, bench/, fuzz/)
+# Fails (exit 1) listing every C++ file of the project (include/, tests/, examples/, bench/, fuzz/, python/)
 # that does not match .clang-format; exits 77 (skipped) without clang-format.
 # With --fix, formats them in place instead.
 set -euo pipefail
@@ -8,7 +8,7 @@ if ! command -v clang-format >/dev/null; then
   echo "check_format: clang-format not found (scripts/deps.sh installs it); skipped"
   exit 77
 fi
-mapfile -t files < <(find include tests examples bench fuzz \( -name '*.hpp' -o -name '*.cpp' \) | sort)
+mapfile -t files < <(find include tests examples bench fuzz python \( -name '*.hpp' -o -name '*.cpp' \) | sort)
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${files[@]}"
   exit 0

@@ -646,15 +646,16 @@ TEST_CASE("bodies: face colour input errors name the object, the value and the r
   e = surface_error({1, {{{0, 1, 2, 3}, 2}, {{0, 1, 2}, 2}}});
   CHECK(has(e, "block face colour 1: nodes = (0, 1, 2) is invalid; valid range: the nodes of a "
                "boundary face (no element has a face with these nodes)"));
-  e = surface_error({1, {{{0, 1, 2, 3}, 0}}});
-  CHECK(has(e, "block face colour 0: colour = 0 is invalid; valid range: [1, inf)"));
+  e = surface_error({1, {{{0, 1, 2, 3}, -1}}});
+  CHECK(has(e, "block face colour 0: colour = -1 is invalid; valid range: [0, inf)"));
+  CHECK(gb::mesh_surface(mesh, {0, {{{0, 1, 2, 3}, 0}}}, "block").colors.at(0) == 0);
   e = surface_error({1, {{{0, 1, 2, 99}, 2}}});
   CHECK(has(e, "block face colour 0: node = 99 is invalid; valid range: [0, 12) (the mesh's "
                "nodes)"));
   e = surface_error({1, {{{0, 1, 2, 3, 4}, 2}}});
   CHECK(has(e, "block face colour 0: number of nodes = 5 is invalid; valid range: 3 or 4"));
   e = surface_error({-2, {}});
-  CHECK(has(e, "block: global colour = -2 is invalid; valid range: [1, inf)"));
+  CHECK(has(e, "block: global colour = -2 is invalid; valid range: [0, inf)"));
   // a bad element is reported as by mass_properties
   gb::Mesh inverted = mesh;
   inverted.elements[1].nodes = {5, 10, 11, 6, 1, 8, 9, 2}; // numbered from the top face
@@ -665,8 +666,9 @@ TEST_CASE("bodies: face colour input errors name the object, the value and the r
     return error_of([&] { (void)gb::face_colors_from_list(list, "block"); });
   };
   CHECK(has(list_error({}), "block colour list: length = 0 is invalid; valid range: at least 1"));
-  CHECK(has(list_error({0}),
-            "block colour list: global colour = 0 is invalid; valid range: [1, 2147483647]"));
+  CHECK(has(list_error({-1}),
+            "block colour list: global colour = -1 is invalid; valid range: [0, 2147483647]"));
+  CHECK(gb::face_colors_from_list(std::vector<long>{0}, "block").global == 0);
   CHECK(has(list_error({1, 5, 0, 1, 2, 3, 4, 2}),
             "block colour list entry 0: number of nodes = 5 is invalid; valid range: 3 or 4"));
   CHECK(has(list_error({1, 3, 0, 1, 2, 2, 4, 0, 1, 2}),

@@ -5,7 +5,7 @@
 /// splitting every element into tetrahedra and summing closed-form tetrahedron moments.
 ///
 /// Units (SI): coordinates m, density kg/m^3, volume m^3, mass kg, inertia kg m^2; colours are
-/// positive integers.
+/// integer labels >= 0.
 ///
 /// ## Node ordering (VTK linear cells)
 /// Node numbers as in the VTK linear cells (types 10, 14, 13, 12), positive orientation:
@@ -316,7 +316,8 @@ inline RigidBody mesh_body(const Mesh& mesh, const Vec3& velocity = Vec3::Zero()
 /// Face colours of a meshed body (Parmec's MESH `colors`): `global` for every boundary face that
 /// is not listed, and per-face overrides, each a face given by its nodes (3 or 4 mesh node
 /// indices, in any order and from any starting node: a face is matched by its set of nodes) and
-/// its colour. Colours are positive integers; a face listed twice takes its last colour.
+/// its colour. Colours are labels, integers >= 0 (the seed asks for positive ones; Parmec's
+/// decks also colour faces 0); a face listed twice takes its last colour.
 struct FaceColors {
   int global = 1;
   std::vector<std::pair<std::vector<std::size_t>, int>> faces{};
@@ -324,16 +325,16 @@ struct FaceColors {
 
 /// Face colours from Parmec's MESH flat list [gcolor, f1, n1 .. nf1, c1, f2, ...] (or [gcolor]
 /// alone): gcolor the global colour, f the number of nodes of a listed face (3 or 4), n its
-/// nodes, c its colour. Throws InputError for an empty list, a colour outside [1, INT_MAX], a
+/// nodes, c its colour. Throws InputError for an empty list, a colour outside [0, INT_MAX], a
 /// face of another size, a negative node or a list that ends inside a face.
 inline FaceColors face_colors_from_list(std::span<const long> list,
                                         const std::string& object = "mesh") {
   const std::string obj = object + " colour list";
   constexpr long max_colour = std::numeric_limits<int>::max();
-  const std::string colours = "[1, " + std::to_string(max_colour) + "] (a positive integer)";
+  const std::string colours = "[0, " + std::to_string(max_colour) + "] (an integer label)";
   grain::detail::require(!list.empty(), obj, "length", list.size(),
                          "at least 1 entry (the global colour)");
-  grain::detail::require(list[0] > 0 && list[0] <= max_colour, obj, "global colour", list[0],
+  grain::detail::require(list[0] >= 0 && list[0] <= max_colour, obj, "global colour", list[0],
                          colours);
   FaceColors out;
   out.global = static_cast<int>(list[0]);
@@ -353,7 +354,7 @@ inline FaceColors face_colors_from_list(std::span<const long> list,
       nodes.push_back(static_cast<std::size_t>(node));
     }
     const long c = list[k + m + 1];
-    grain::detail::require(c > 0 && c <= max_colour, name, "colour", c, colours);
+    grain::detail::require(c >= 0 && c <= max_colour, name, "colour", c, colours);
     out.faces.emplace_back(std::move(nodes), static_cast<int>(c));
     k += m + 2;
   }
@@ -397,13 +398,13 @@ inline std::string node_list_text(std::span<const std::size_t> nodes) {
 /// their elements and, within an element, of the face tables of `detail::element_faces`; nodes in
 /// the order of first use, relative to the mesh's centre of mass (`mass_properties`). Validates
 /// the mesh as `mass_properties` does, and throws InputError (naming the object, the value and
-/// the valid range) for a colour <= 0, a listed face with other than 3 or 4 nodes, with an
+/// the valid range) for a colour < 0, a listed face with other than 3 or 4 nodes, with an
 /// unknown node, or whose nodes are not those of a boundary face.
 inline MeshSurface mesh_surface(const Mesh& mesh, const FaceColors& colors = {},
                                 const std::string& object = "mesh") {
   const MassProperties props = mass_properties(mesh, object);
-  grain::detail::require(colors.global > 0, object, "global colour", colors.global,
-                         "[1, inf) (a positive integer)");
+  grain::detail::require(colors.global >= 0, object, "global colour", colors.global,
+                         "[0, inf) (an integer label)");
   // every face of every element, with its sorted nodes
   struct Face {
     std::array<std::size_t, 4> key;
@@ -461,7 +462,7 @@ inline MeshSurface mesh_surface(const Mesh& mesh, const FaceColors& colors = {},
   for (std::size_t c = 0; c < colors.faces.size(); ++c) {
     const auto& [nodes, colour] = colors.faces[c];
     const std::string name = object + " face colour " + std::to_string(c);
-    grain::detail::require(colour > 0, name, "colour", colour, "[1, inf) (a positive integer)");
+    grain::detail::require(colour >= 0, name, "colour", colour, "[0, inf) (an integer label)");
     grain::detail::require(nodes.size() == 3 || nodes.size() == 4, name, "number of nodes",
                            nodes.size(), "3 or 4 (a triangle or a quadrilateral)");
     for (const std::size_t n : nodes)

@@ -237,6 +237,14 @@ inline double table_slope(const Table& t, double x) {
   return (t.y()[i + 1] - t.y()[i]) / (t.x()[i + 1] - t.x()[i]);
 }
 
+/// The largest slope of a table's segments (0 if none rises).
+inline double largest_slope(const Table& t) {
+  double k = 0.0;
+  for (std::size_t i = 0; i + 1 < t.x().size(); ++i)
+    k = std::max(k, (t.y()[i + 1] - t.y()[i]) / (t.x()[i + 1] - t.x()[i]));
+  return k;
+}
+
 /// A table continued linearly beyond its end points (by its first and last segments).
 inline double extended(const Table& t, double x) {
   const auto& X = t.x();

@@ -94,6 +94,13 @@
 /// step given to `run`; the estimate is that of the previous step's state, so a spring that
 /// switches on (a contact element closing) limits the step from the next step on.
 ///
+/// `critical_bound` (Parmec's CRITICAL) estimates each spring at the stiffest state it can
+/// reach instead: k the largest slope of its force table (and of its unloading curve), c the
+/// largest slope of its dashpot table, k_a the largest slope of each torsion table, every spring
+/// and torsion spring counted (on or off, dormant included); along the spring's current
+/// direction, and, while that is undefined (the two points of a zero-length spring coincide),
+/// along the stiffest one (m_min). A step below it stays stable wherever the strokes go.
+///
 /// ## References
 /// - H. C. Andersen, Rattle: a "velocity" version of the Shake algorithm for molecular dynamics
 ///   calculations, J. Comput. Phys. 52 (1983) 24-34.
@@ -270,8 +277,9 @@ public:
   /// a point of the plane and `normal` its normal (world, non-zero; carried by body 2), which
   /// must not be given for the other geometries. Validates the parameters (spring.hpp) and
   /// returns the spring's index. Throws InputError for an unknown body, body1 = world or
-  /// body1 = body2, non-finite points, a point-to-point or planar spring whose direction is
-  /// undefined (coincident points), or a missing or zero plane normal.
+  /// body1 = body2, non-finite points, or a missing or zero plane normal. Coincident points of a
+  /// point-to-point or planar spring (a zero-length spring, as Parmec allows) leave its
+  /// direction undefined: it acts once they separate.
   std::size_t add_spring(SpringParams p, long body1, const Vec3& point1, long body2,
                          const Vec3& point2, const Vec3& normal = Vec3::Zero()) {
     if (p.name == "SPRING") p.name += " " + std::to_string(spring_links_.size());
@@ -292,15 +300,6 @@ public:
     k.p2 = point2;
     k.normal = plane ? Vec3(normal.normalized()) : Vec3(Vec3::UnitZ());
     validate(p);
-    if (p.geometry == SpringGeometry::point_to_point || p.geometry == SpringGeometry::planar)
-      grain::detail::require(
-          detail::spring_direction(p, k).squaredNorm() > 0.0, obj, "|point2 - point1|",
-          p.geometry == SpringGeometry::planar
-              ? (point2 - point1 -
-                 p.direction.normalized().dot(point2 - point1) * p.direction.normalized())
-                    .norm()
-              : (point2 - point1).norm(),
-          "(0, inf) (coincident points leave the direction undefined)");
     SpringLink l;
     l.body1 = body1;
     l.body2 = body2;
@@ -698,28 +697,31 @@ public:
   }
 
   // ---------------------------------------------------------------- critical steps
-  /// Per-spring estimates of every spring that is on, in index order (see the file comment).
-  std::vector<CriticalStep> spring_critical_steps() {
+  /// Per-spring estimates of every spring that is on, in index order (see the file comment);
+  /// `bound`: at the stiffest state of every spring (critical_bound).
+  std::vector<CriticalStep> spring_critical_steps(bool bound = false) {
     if (!initialized_) initialize();
     std::vector<CriticalStep> out;
     for (std::size_t i = 0; i < spring_links_.size(); ++i) {
-      const CriticalStep c = spring_estimate(i);
+      const CriticalStep c = spring_estimate(i, bound);
       if (std::isfinite(c.step)) out.push_back(c);
     }
     return out;
   }
-  /// Per-torsion-spring estimates of every torsion spring with a stiff angle, in index order.
-  std::vector<CriticalStep> torsion_critical_steps() {
+  /// Per-torsion-spring estimates of every torsion spring with a stiff angle, in index order;
+  /// `bound`: at the largest slopes of their tables.
+  std::vector<CriticalStep> torsion_critical_steps(bool bound = false) {
     if (!initialized_) initialize();
     std::vector<CriticalStep> out;
     for (std::size_t i = 0; i < torsion_links_.size(); ++i) {
-      CriticalStep c = torsion_estimate(i, nullptr);
+      CriticalStep c = torsion_estimate(i, nullptr, bound);
       if (std::isfinite(c.step)) out.push_back(c);
     }
     return out;
   }
-  /// Per-body estimates of every body with a spring that is on, in index order.
-  std::vector<CriticalStep> body_critical_steps() {
+  /// Per-body estimates of every body with a spring that is on, in index order; `bound`: from
+  /// the bounds of the springs.
+  std::vector<CriticalStep> body_critical_steps(bool bound = false) {
     if (!initialized_) initialize();
     const std::size_t n = bodies_.size();
     std::vector<double> w2(n, 0.0), xi(n, 0.0);
@@ -730,14 +732,14 @@ public:
       xi[i] = std::max(xi[i], ratio);
     };
     for (std::size_t s = 0; s < spring_links_.size(); ++s) {
-      const CriticalStep c = spring_estimate(s);
+      const CriticalStep c = spring_estimate(s, bound);
       if (!std::isfinite(c.step)) continue;
       add(spring_links_[s].body1, c.omega, c.damping_ratio);
       add(spring_links_[s].body2, c.omega, c.damping_ratio);
     }
     for (std::size_t s = 0; s < torsion_links_.size(); ++s) {
       std::array<CriticalStep, 3> angles;
-      torsion_estimate(s, &angles);
+      torsion_estimate(s, &angles, bound);
       for (const CriticalStep& c : angles) {
         if (!std::isfinite(c.step)) continue;
         add(torsion_links_[s].body1, c.omega, c.damping_ratio);
@@ -763,9 +765,19 @@ public:
   std::vector<CriticalStep> critical_torsion(std::size_t n) {
     return detail::lowest(torsion_critical_steps(), n);
   }
+  /// The n_springs lowest per-spring and n_bodies lowest per-body bounds (critical_bound()),
+  /// ascending.
+  CriticalSteps critical_bound(std::size_t n_springs, std::size_t n_bodies) {
+    return {detail::lowest(spring_critical_steps(true), n_springs),
+            detail::lowest(body_critical_steps(true), n_bodies)};
+  }
+  /// The global estimate at the stiffest state of every spring and torsion spring [s] (see the
+  /// file comment): Parmec's CRITICAL. Infinity if no spring can limit the step.
+  double critical_bound() { return critical(true); }
+
   /// The global estimate [s]: the minimum over springs, torsion springs and bodies (infinity if
-  /// no spring is on).
-  double critical() {
+  /// no spring is on); `bound`: critical_bound().
+  double critical(bool bound = false) {
     double h = std::numeric_limits<double>::infinity();
     if (damped_) {
       // v <- (1 - d h) v per step under global damping d: stable for h < 2 / d
@@ -773,11 +785,11 @@ public:
           std::max(damping_linear_(time_).maxCoeff(), damping_angular_(time_).maxCoeff());
       if (d > 0.0) h = 2.0 / d;
     }
-    for (const auto& c : spring_critical_steps())
+    for (const auto& c : spring_critical_steps(bound))
       h = std::min(h, c.step);
-    for (const auto& c : torsion_critical_steps())
+    for (const auto& c : torsion_critical_steps(bound))
       h = std::min(h, c.step);
-    for (const auto& c : body_critical_steps())
+    for (const auto& c : body_critical_steps(bound))
       h = std::min(h, c.step);
     return h;
   }
@@ -916,23 +928,38 @@ private:
     return Vec3(1.0 / x.dot(inv * x), 1.0 / y.dot(inv * y), 1.0 / z.dot(inv * z));
   }
 
-  CriticalStep spring_estimate(std::size_t s) const {
+  CriticalStep spring_estimate(std::size_t s, bool bound = false) const {
     CriticalStep c;
     c.index = s;
     const SpringState& st = spring_states_[s];
     const SpringResult& r = spring_results_[s];
     const SpringParams& p = spring_params_[s];
-    const double k = r.stiffness;
-    if (!st.active || st.rule_unload || !(k > 0.0) || r.direction.squaredNorm() == 0.0) return c;
+    double k = r.stiffness;
+    if (bound) {
+      k = detail::largest_slope(p.spring);
+      if (p.unload) k = std::max(k, detail::largest_slope(*p.unload));
+    } else if (!st.active || st.rule_unload || r.direction.squaredNorm() == 0.0) {
+      return c;
+    }
+    if (!(k > 0.0)) return c;
     const SpringLink& l = spring_links_[s];
     const bool plane = p.geometry == SpringGeometry::point_to_plane;
     const SpringKinematics kin = spring_kinematics(l, plane);
     const Eigen::Matrix3d K = point_k(l.body1, kin.p1) + point_k(l.body2, plane ? kin.p1 : kin.p2);
-    const double m = 1.0 / r.direction.dot(K * r.direction);
+    const Vec3& e = r.direction;
+    double m = 0.0;
+    if (e.squaredNorm() > 0.0) {
+      m = 1.0 / e.dot(K * e);
+    } else { // undefined direction (bound only): the stiffest one
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, Eigen::EigenvaluesOnly);
+      m = 1.0 / eig.eigenvalues().maxCoeff();
+    }
     c.omega = std::sqrt(k / m);
     double xi = p.damping_ratio;
     if (p.dashpot)
-      xi = std::max(0.0, detail::table_slope(*p.dashpot, r.velocity)) / (2.0 * std::sqrt(k * m));
+      xi = std::max(0.0, bound ? detail::largest_slope(*p.dashpot)
+                               : detail::table_slope(*p.dashpot, r.velocity)) /
+           (2.0 * std::sqrt(k * m));
     c.damping_ratio = xi;
     c.step = critical_step(c.omega, xi);
     if (p.friction > 0.0 && p.kskn > 0.0) {
@@ -948,7 +975,8 @@ private:
   }
 
   /// The limiting angle of torsion spring s; with `angles`, each angle's estimate too.
-  CriticalStep torsion_estimate(std::size_t s, std::array<CriticalStep, 3>* angles) const {
+  CriticalStep torsion_estimate(std::size_t s, std::array<CriticalStep, 3>* angles,
+                                bool bound = false) const {
     const TorsionLink& l = torsion_links_[s];
     const TorsionSpringParams& p = torsion_params_[s];
     const TorsionResult& r = torsion_results_[s];
@@ -972,12 +1000,16 @@ private:
       const TorsionLaw& law = *laws[static_cast<std::size_t>(coupled ? first : a)];
       const double angle = coupled ? radial : r.angles[a];
       const double rate = r.rates[a];
-      const double k = law.spring ? detail::table_slope(*law.spring, angle) : 0.0;
+      const double k = !law.spring ? 0.0
+                       : bound     ? detail::largest_slope(*law.spring)
+                                   : detail::table_slope(*law.spring, angle);
       if (k > 0.0) {
         c.omega = std::sqrt(k / J[a]);
         double xi = law.damping_ratio;
         if (law.dashpot)
-          xi = std::max(0.0, detail::table_slope(*law.dashpot, rate)) / (2.0 * std::sqrt(k * J[a]));
+          xi = std::max(0.0, bound ? detail::largest_slope(*law.dashpot)
+                                   : detail::table_slope(*law.dashpot, rate)) /
+               (2.0 * std::sqrt(k * J[a]));
         c.damping_ratio = xi;
         c.step = critical_step(c.omega, xi);
       }
