@@ -655,6 +655,17 @@ public:
     }
   }
 
+  /// Sets SimulationParams::time_step [s] of the next runs (0: automatic); checked against the
+  /// stable limits when the next run starts. Throws InputError for a step that is not finite
+  /// and >= 0.
+  void set_time_step(double dt) {
+    detail::require(std::isfinite(dt) && dt >= 0.0, "Simulation::set_time_step", "time_step", dt,
+                    "[0, inf) s (0: automatic)");
+    if (dt == params_.time_step) return;
+    params_.time_step = dt;
+    initialized_ = false;
+  }
+
   // ---------------------------------------------------------------- read access
   const Particles& particles() const { return particles_; }
   Particles& particles() { return particles_; }

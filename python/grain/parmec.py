@@ -19,14 +19,14 @@ import time as _time
 
 from . import _grain
 
-__all__ = ["ARGV", "RESET", "TSERIES", "MATERIAL", "MESH", "ANALYTICAL", "VELOCITY", "GRAVITY",
-           "SPRING", "TORSION_SPRING", "UNSPRING", "BALL_JOINT", "EQM", "HISTORY", "CRITICAL",
-           "DEM"]
+__all__ = ["ARGV", "RESET", "TSERIES", "MATERIAL", "SPHERE", "MESH", "ANALYTICAL", "OBSTACLE",
+           "GRANULAR", "VELOCITY", "GRAVITY",
+           "SPRING", "TORSION_SPRING", "UNSPRING", "BALL_JOINT", "EQM", "RESTRAIN", "PRESCRIBE",
+           "DAMPING", "HISTORY", "OUTPUT", "CRITICAL", "DEM"]
 
 # commands of the language that this version does not run yet: calling one is an error that
 # says so (never a silent no-op)
-NOT_YET = ["SPHERE", "OBSTACLE", "GRANULAR",
-           "RESTRAIN", "PRESCRIBE", "DAMPING", "OUTPUT"]
+NOT_YET = []
 
 _BODY_ENTITIES = ["PX", "PY", "PZ", "|P|", "DX", "DY", "DZ", "|D|", "VX", "VY", "VZ", "|V|",
                   "OX", "OY", "OZ", "|O|", "FX", "FY", "FZ", "|F|", "TX", "TY", "TZ", "|T|"]
@@ -43,13 +43,20 @@ class _Model:
     """Everything a deck has defined since the start or the last RESET."""
 
     def __init__(self, prefix):
-        self.system = _grain.BodySystem()
+        self.model = _grain.ParmecModel()
+        self.system = self.model.system()
         self.recorder = _grain.Recorder()
         self.tseries = []     # TSERIES: grain TimeFunctions
         self.tseries_points = []  # TSERIES: (times, values), or None for a constant
         self.unsprings = 0
         self.materials = []   # MATERIAL: (density, young, poisson)
-        self.particles = []   # parnum -> body index
+        self.particles = []   # parnum -> body index, or None for a sphere that is not a body
+        self.spheres = {}     # parnum -> sphere id (SPHERE)
+        self.grain_materials = {}  # (MATERIAL number, or -1 for an obstacle; colour) -> index
+        self.granular = {}    # (colour1, colour2), colour1 <= colour2 -> GRANULAR's law
+        self.obstacles = 0
+        self.outputs = 0      # OUTPUT families
+        self.applied = None   # the GRANULAR laws and materials last given to the model
         self.joints = 0
         self.torsion_springs = 0
         self.springs = []     # per SPRING: True if point-to-plane (forces reported negated)
@@ -124,6 +131,38 @@ def _particle(cmd, name, x, allow_none=False):
     return int(x)
 
 
+def _body(i):
+    """The body index of particle i; a sphere becomes a body of the system (for springs,
+    joints, restraints and prescribed motion) the first time one is asked for."""
+    b = _model.particles[i]
+    if b is None:
+        b = _model.model.attach(_model.spheres[i])
+        _model.particles[i] = b
+    return b
+
+
+def _colour(cmd, name, x):
+    if not isinstance(x, numbers.Integral) or isinstance(x, bool) or not x > 0:
+        raise ValueError("%s: argument '%s' = %r is invalid; valid: a positive integer (a "
+                         "surface colour)" % (cmd, name, x))
+    return int(x)
+
+
+def _grain_material(material, colour):
+    """grain's material of a MATERIAL number (-1: an obstacle) and a colour: the colour selects
+    the GRANULAR law, the material the density."""
+    key = (material, colour)
+    if key not in _model.grain_materials:
+        if material < 0:
+            d, e, nu = 1000.0, 1E9, 0.25  # an obstacle's: not used by GRANULAR's law
+            name = "obstacle colour %d" % colour
+        else:
+            d, e, nu = _model.materials[material]
+            name = "MATERIAL %d colour %d" % (material, colour)
+        _model.grain_materials[key] = _model.model.add_material(d, e, nu, name)
+    return _model.grain_materials[key]
+
+
 def _material(cmd, name, x):
     n = len(_model.materials)
     if not isinstance(x, numbers.Integral) or isinstance(x, bool) or not 0 <= x < n:
@@ -140,11 +179,56 @@ def _time_function(cmd, name, x):
     if _is_number(x):
         return _grain.TimeFunction.constant(float(x))
     if callable(x):
-        raise NotImplementedError(
-            "%s: argument '%s' is a callable; this version of grain-parmec takes a number or a "
-            "TSERIES number here" % (cmd, name))
-    raise TypeError("%s: argument '%s' = %r is invalid; valid: a number or a TSERIES number"
-                    % (cmd, name, x))
+        return _grain.TimeFunction.callable(_scalar_callback(cmd, name, x))
+    raise TypeError("%s: argument '%s' = %r is invalid; valid: a number, a TSERIES number or a "
+                    "callable of time" % (cmd, name, x))
+
+
+def _scalar_callback(cmd, name, f):
+    """f(t) checked to return a number (a numpy scalar or 0-d array counts)."""
+    def call(t):
+        v = f(t)
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            raise TypeError("%s: callback '%s' returned %r at t = %g; valid: a number"
+                            % (cmd, name, v, t))
+    return call
+
+
+def _vector_callback(cmd, name, f):
+    """f(t) checked to return three numbers."""
+    def call(t):
+        v = f(t)
+        try:
+            if len(v) == 3:
+                return (float(v[0]), float(v[1]), float(v[2]))
+        except (TypeError, ValueError):
+            pass
+        raise TypeError("%s: callback '%s' returned %r at t = %g; valid: a tuple of 3 numbers"
+                        % (cmd, name, v, t))
+    return call
+
+
+def _vector_history(cmd, name, x):
+    """A tuple (i, j, k) of TSERIES numbers, or a callback of time returning 3 numbers: as the
+    binding takes it (3 TimeFunctions, or a checked callable)."""
+    if callable(x):
+        return _vector_callback(cmd, name, x)
+    if isinstance(x, (tuple, list)):
+        if len(x) != 3:
+            raise ValueError("%s: argument '%s' = %r is invalid; valid: a tuple of 3 TSERIES "
+                             "numbers or a callback" % (cmd, name, x))
+        out = []
+        for c in x:
+            if not isinstance(c, numbers.Integral) or isinstance(c, bool) or \
+                    not 0 <= c < len(_model.tseries):
+                raise ValueError("%s: argument '%s' = %r is invalid: %r is not a TSERIES number; "
+                                 "valid: [0, %d)" % (cmd, name, x, c, len(_model.tseries)))
+            out.append(_model.tseries[int(c)])
+        return tuple(out)
+    raise TypeError("%s: argument '%s' = %r is invalid; valid: a tuple of 3 TSERIES numbers or a "
+                    "callback" % (cmd, name, x))
 
 
 # ------------------------------------------------------------------------------------ commands
@@ -260,22 +344,34 @@ def ANALYTICAL(inertia=None, mass=None, rotation=None, position=None, material=N
     [1, 1, 1, 0, 0, 0]), mass [kg] (default 1), rotation [e1x, e1y, e1z, e2x, ...] (the
     columns of the reference frame's rotation, default identity), position (x, y, z) [m]
     (default the origin). Returns its particle number."""
-    if particle is not None:
-        # every particle of this model is a body without contact already (MESH, ANALYTICAL):
-        # turning one into an analytical particle keeps it as it is
-        k = _particle("ANALYTICAL", "particle", particle)
-        if any(v is not None for v in (inertia, mass, rotation, position)):
-            raise NotImplementedError("ANALYTICAL: new inertia, mass, rotation or position for an "
-                                      "existing particle are not supported yet by grain-parmec")
-        return k
-    j = _numbers("ANALYTICAL", "inertia", inertia, 6) if inertia is not None else \
-        [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]
-    m = _positive("ANALYTICAL", "mass", mass) if mass is not None else 1.0
-    r = _numbers("ANALYTICAL", "rotation", rotation, 9) if rotation is not None else \
-        [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
-    x = _vector("ANALYTICAL", "position", position) if position is not None else (0.0, 0.0, 0.0)
+    j = _numbers("ANALYTICAL", "inertia", inertia, 6) if inertia is not None else None
+    m = _positive("ANALYTICAL", "mass", mass) if mass is not None else None
+    r = _numbers("ANALYTICAL", "rotation", rotation, 9) if rotation is not None else None
+    x = _vector("ANALYTICAL", "position", position) if position is not None else None
     if material is not None:
         _material("ANALYTICAL", "material", material)
+    if particle is not None:
+        k = _particle("ANALYTICAL", "particle", particle)
+        if k in _model.spheres:
+            # a sphere leaves the contacts and becomes a body with its own values or those given
+            if _model.particles[k] is not None:
+                raise ValueError("ANALYTICAL: argument 'particle' = %r is invalid: the sphere is "
+                                 "held by a spring, joint or restraint already; valid: a sphere "
+                                 "converted before those" % (particle,))
+            _model.particles[k] = _model.model.convert(_model.spheres[k], m, j, r, x,
+                                                       "ANALYTICAL particle %d" % k)
+            del _model.spheres[k]
+            return k
+        # a MESH or ANALYTICAL particle is a body without contact already: it stays as it is
+        if any(v is not None for v in (inertia, mass, rotation, position)):
+            raise NotImplementedError("ANALYTICAL: new inertia, mass, rotation or position for a "
+                                      "MESH or ANALYTICAL particle are not supported yet by "
+                                      "grain-parmec (for a SPHERE they are)")
+        return k
+    j = j if j is not None else [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]
+    m = m if m is not None else 1.0
+    r = r if r is not None else [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    x = x if x is not None else (0.0, 0.0, 0.0)
     n = len(_model.particles)
     b = _model.system.add_analytical(j, m, r, x, "ANALYTICAL particle %d" % n)
     _model.particles.append(b)
@@ -285,15 +381,167 @@ def ANALYTICAL(inertia=None, mass=None, rotation=None, position=None, material=N
 def VELOCITY(parnum, linear=(0.0, 0.0, 0.0), angular=(0.0, 0.0, 0.0)):
     """Initial linear [m/s] and angular [rad/s] velocity of a particle (world axes)."""
     i = _particle("VELOCITY", "parnum", parnum)
-    _model.system.set_velocity(_model.particles[i], _vector("VELOCITY", "linear", linear),
-                               _vector("VELOCITY", "angular", angular))
+    v, w = _vector("VELOCITY", "linear", linear), _vector("VELOCITY", "angular", angular)
+    if _model.particles[i] is None:  # a sphere of the particle simulation
+        _model.model.set_sphere_velocity(_model.spheres[i], v, w)
+    else:
+        _model.system.set_velocity(_model.particles[i], v, w)
+
+
+def SPHERE(center, radius, material, color):
+    """A spherical particle: centre (x, y, z) [m], radius [m], MATERIAL number and a positive
+    surface colour (which selects the GRANULAR law of its contacts). Returns its number."""
+    cmd = "SPHERE"
+    c = _vector(cmd, "center", center)
+    r = _positive(cmd, "radius", radius)
+    m = _material(cmd, "material", material)
+    col = _colour(cmd, "color", color)
+    if _model.started and not _model.model.particles():
+        raise ValueError("SPHERE: a sphere after a DEM of bodies alone is invalid; valid: "
+                         "spheres and obstacles defined before the first DEM (or after RESET)")
+    sid = _model.model.add_sphere(c, r, _grain_material(m, col))
+    _model.particles.append(None)
+    n = len(_model.particles) - 1
+    _model.spheres[n] = sid
+    return n
+
+
+def OBSTACLE(triangles, color, point=(0.0, 0.0, 0.0), linear=None, angular=None):
+    """An obstacle of triangles [(x1, y1, z1, x2, y2, z2, x3, y3, z3), ...] [m] with a positive
+    colour, or one colour per triangle, moving with the velocity linear(t) [m/s] of its
+    reference point `point` and the angular velocity angular(t) [rad/s] about it (callbacks
+    returning 3 numbers; default: at rest)."""
+    cmd = "OBSTACLE"
+    if not isinstance(triangles, (list, tuple)) or not triangles or \
+            not all(isinstance(t, (list, tuple)) and len(t) == 9 and all(_is_number(c) for c in t)
+                    for t in triangles):
+        raise TypeError("%s: argument 'triangles' = %r is invalid; valid: a list of 9-tuples "
+                        "(x1, y1, z1, x2, y2, z2, x3, y3, z3)" % (cmd, triangles))
+    if isinstance(color, (list, tuple)):
+        if len(color) != len(triangles):
+            raise ValueError("%s: argument 'color' has %d colours for %d triangles; valid: one "
+                             "colour, or one per triangle" % (cmd, len(color), len(triangles)))
+        colours = [_colour(cmd, "color", c) for c in color]
+    else:
+        colours = [_colour(cmd, "color", color)] * len(triangles)
+    p = _vector(cmd, "point", point)
+    for name, f in (("linear", linear), ("angular", angular)):
+        if f is not None and not callable(f):
+            raise TypeError("%s: argument '%s' = %r is invalid; valid: a callback of time "
+                            "returning (x, y, z)" % (cmd, name, f))
+    if _model.started and not _model.model.particles():
+        raise ValueError("OBSTACLE: an obstacle after a DEM of bodies alone is invalid; valid: "
+                         "spheres and obstacles defined before the first DEM (or after RESET)")
+    _model.model.add_obstacle([tuple(float(c) for c in t) for t in triangles],
+                              [_grain_material(-1, c) for c in colours], p,
+                              None if linear is None else _vector_callback(cmd, "linear", linear),
+                              None if angular is None else
+                              _vector_callback(cmd, "angular", angular),
+                              "OBSTACLE %d" % _model.obstacles)
+    _model.obstacles += 1
+
+
+def GRANULAR(color1, color2, spring, damper=1.0, friction=0.0, rolling=0.0, drilling=0.0,
+             kskn=0.5):
+    """The contact law of a pair of surface colours (color1 = color2 = 0: of the pairs not given
+    otherwise): a linear normal spring [N/m] with a damper given as a critical damping ratio
+    (of each contact's effective mass), Coulomb friction mu or (mu_s, mu_d), and a tangential
+    spring and dashpot kskn times the normal ones. `rolling` and `drilling` are accepted and,
+    as in Parmec, act on nothing yet."""
+    cmd = "GRANULAR"
+    if (color1, color2) != (0, 0):
+        c1, c2 = _colour(cmd, "color1", color1), _colour(cmd, "color2", color2)
+    else:
+        c1 = c2 = 0
+    k = _positive(cmd, "spring", spring)
+    d = _number(cmd, "damper", damper)
+    if not d >= 0.0:
+        raise ValueError("%s: argument 'damper' = %r is invalid; valid range: [0, inf) (a "
+                         "critical damping ratio)" % (cmd, damper))
+    if isinstance(friction, (tuple, list)):
+        if len(friction) != 2 or not all(_is_number(f) for f in friction):
+            raise TypeError("%s: argument 'friction' = %r is invalid; valid: a number or a pair "
+                            "(mu_s, mu_d)" % (cmd, friction))
+        mus, mud = float(friction[0]), float(friction[1])
+    else:
+        mus = mud = _number(cmd, "friction", friction)
+    if not 0.0 <= mud <= mus:
+        raise ValueError("%s: argument 'friction' = %r is invalid; valid: 0 <= mu_d <= mu_s"
+                         % (cmd, friction))
+    _number(cmd, "rolling", rolling)
+    _number(cmd, "drilling", drilling)
+    r = _positive(cmd, "kskn", kskn)
+    _model.granular[(min(c1, c2), max(c1, c2))] = (k, float(d), mus, mud, r)
+
+
+def _apply_granular():
+    """GRANULAR's laws for every pair of grain materials of which one is a sphere's (again only
+    when a law or a material has been added since: setting them re-initialises the run)."""
+    state = (tuple(sorted(_model.granular.items())), len(_model.grain_materials))
+    if state == _model.applied:
+        return
+    _model.applied = state
+    keys = list(_model.grain_materials.items())
+    for a, ((ma, ca), ka) in enumerate(keys):
+        for (mb, cb), kb in keys[a:]:
+            if ma < 0 and mb < 0:
+                continue  # two obstacles never touch
+            # the seed's defaults for pairs without a law: spring 0 (no force), damper 1,
+            # no friction, kskn 0.5
+            law = _model.granular.get((min(ca, cb), max(ca, cb)),
+                                      _model.granular.get((0, 0), (0.0, 1.0, 0.0, 0.0, 0.5)))
+            _model.model.set_pair(ka, kb, *law)
 
 
 def GRAVITY(gx, gy, gz):
-    """The gravitational acceleration [m/s^2]: each component a number or a TSERIES number."""
-    _model.system.set_gravity(_time_function("GRAVITY", "gx", gx),
+    """The gravitational acceleration [m/s^2]: each component a number, a TSERIES number or a
+    callable of time."""
+    _model.model.set_gravity(_time_function("GRAVITY", "gx", gx),
                               _time_function("GRAVITY", "gy", gy),
                               _time_function("GRAVITY", "gz", gz))
+
+
+def _directions(cmd, name, x):
+    """A list of 3, 6 or 9 numbers: up to three directions (zero vectors are none)."""
+    if not isinstance(x, (tuple, list)) or len(x) not in (3, 6, 9) or \
+            not all(_is_number(c) for c in x):
+        raise TypeError("%s: argument '%s' = %r is invalid; valid: a list of 3, 6 or 9 numbers "
+                        "(one to three directions [x1, y1, z1, ...])" % (cmd, name, x))
+    dirs = [tuple(float(c) for c in x[k:k + 3]) for k in range(0, len(x), 3)]
+    return [d for d in dirs if any(c != 0.0 for c in d)]
+
+
+def RESTRAIN(parnum, linear=(0.0, 0.0, 0.0), angular=(0.0, 0.0, 0.0)):
+    """Restrains the motion of a particle along up to three `linear` directions and its spatial
+    rotation about up to three `angular` axes (lists [x1, y1, z1, x2, ...]; world axes)."""
+    i = _particle("RESTRAIN", "parnum", parnum)
+    _model.system.restrain(_body(i), _directions("RESTRAIN", "linear", linear),
+                           _directions("RESTRAIN", "angular", angular))
+
+
+def PRESCRIBE(parnum, linear=None, angular=None, kind="vv"):
+    """Prescribes the motion of a particle: `linear` and `angular` each a tuple (i, j, k) of
+    TSERIES numbers or a callback of time returning (x, y, z), read as velocities [m/s], [rad/s]
+    or accelerations [m/s^2], [rad/s^2] as `kind` says ('vv' default, 'va', 'av', 'aa'; linear
+    first). It overrides the dynamics and the restraints of the components it gives."""
+    i = _particle("PRESCRIBE", "parnum", parnum)
+    if kind not in ("vv", "va", "av", "aa"):
+        raise ValueError("PRESCRIBE: argument 'kind' = %r is invalid; valid values: 'vv', 'va', "
+                         "'av', 'aa'" % (kind,))
+    if linear is None and angular is None:
+        raise ValueError("PRESCRIBE: arguments 'linear' and 'angular' are both missing; valid: "
+                         "at least one history")
+    lin = None if linear is None else _vector_history("PRESCRIBE", "linear", linear)
+    ang = None if angular is None else _vector_history("PRESCRIBE", "angular", angular)
+    _model.system.prescribe(_body(i), lin, ang, kind)
+
+
+def DAMPING(linear, angular):
+    """Global damping: `linear` and `angular` each a callback of time returning the coefficients
+    (dx, dy, dz) [1/s] or a tuple (i, j, k) of TSERIES numbers; force -m d_v v, torque
+    -J d_w omega per world axis."""
+    _model.system.set_damping(_vector_history("DAMPING", "linear", linear),
+                              _vector_history("DAMPING", "angular", angular))
 
 
 # Parmec continues its lookup tables linearly beyond their end points; grain's tables hold their
@@ -401,8 +649,8 @@ def SPRING(part1, point1, part2, geom2, spring, dashpot=None, direction=None, pl
     spec.friction = _number(cmd, "friction", friction)
     spec.kskn = _number(cmd, "kskn", kskn)
     n = len(_model.springs)
-    _model.system.add_spring(spec, _model.particles[i], p1,
-                             _model.particles[j] if j >= 0 else -1, p2,
+    _model.system.add_spring(spec, _body(i), p1,
+                             _body(j) if j >= 0 else -1, p2,
                              normal if plane else (0.0, 0.0, 0.0), "SPRING %d" % n)
     _model.springs.append(plane)
     return n
@@ -414,16 +662,15 @@ def TORSION_SPRING(part1, part2, zdir, xdir, kroll=None, kpitch=None, kyaw=None,
     (yaw) and xdir (roll, orthogonal to zdir) now; pitch about y = z x x. k-tables [angle,
     torque, ...] [rad, N m] and d-tables [rate, torque, ...] [rad/s, N m] or critical damping
     ratios >= 0, each default zero; `cone` couples two or three angles ('roll', 'pitch',
-    'yaw'). Torques on part1 as in Parmec: a restoring table has a negative slope. Returns its
-    number."""
+    'yaw'); `refpnt` the point where the output shows it (it moves with part1; default: the
+    midpoint of the two centres). Torques on part1 as in Parmec: a restoring table has a
+    negative slope. Returns its number."""
     cmd = "TORSION_SPRING"
     i = _particle(cmd, "part1", part1)
     j = _particle(cmd, "part2", part2, allow_none=True)
     z = _vector(cmd, "zdir", zdir)
     x = _vector(cmd, "xdir", xdir)
-    if refpnt is not None:
-        raise NotImplementedError("TORSION_SPRING: argument 'refpnt' is not supported yet by "
-                                  "grain-parmec")
+    ref = None if refpnt is None else _vector(cmd, "refpnt", refpnt)
     axes = []
     for k_name, k, d_name, d in (("kroll", kroll, "droll", droll),
                                  ("kpitch", kpitch, "dpitch", dpitch),
@@ -454,8 +701,8 @@ def TORSION_SPRING(part1, part2, zdir, xdir, kroll=None, kpitch=None, kyaw=None,
                              % (cmd, cone))
         flags = [n in cone for n in names]
     n = _model.torsion_springs
-    _model.system.add_torsion_spring(_model.particles[i], _model.particles[j] if j >= 0 else -1,
-                                     z, x, axes, flags, "TORSION_SPRING %d" % n)
+    _model.system.add_torsion_spring(_body(i), _body(j) if j >= 0 else -1,
+                                     z, x, axes, flags, "TORSION_SPRING %d" % n, ref)
     _model.torsion_springs += 1
     return n
 
@@ -524,8 +771,8 @@ def BALL_JOINT(part1, point, part2=-1):
     i = _particle("BALL_JOINT", "part1", part1)
     p = _vector("BALL_JOINT", "point", point)
     j = _particle("BALL_JOINT", "part2", part2, allow_none=True)
-    _model.system.add_ball_joint(_model.particles[i], p,
-                                 _model.particles[j] if j >= 0 else -1)
+    _model.system.add_ball_joint(_body(i), p,
+                                 _body(j) if j >= 0 else -1)
     _model.joints += 1
     return _model.joints - 1
 
@@ -538,13 +785,13 @@ def EQM(part1, point1, part2=None, point2=None, direction=None):
     j = -1
     p2 = (0.0, 0.0, 0.0)
     if part2 is not None:
-        j = _model.particles[_particle("EQM", "part2", part2)]
+        j = _body(_particle("EQM", "part2", part2))
         if point2 is None:
             raise ValueError("EQM: argument 'point2' is missing; valid: a point (x, y, z) of "
                              "part2")
         p2 = _vector("EQM", "point2", point2)
     d = None if direction is None else _vector("EQM", "direction", direction)
-    return _model.system.equivalent_mass(_model.particles[i], p1, j, p2, d)
+    return _model.system.equivalent_mass(_body(i), p1, j, p2, d)
 
 
 def HISTORY(entity, source=0, point=None, h5file=None, h5last=False):
@@ -553,20 +800,52 @@ def HISTORY(entity, source=0, point=None, h5file=None, h5last=False):
     if not isinstance(entity, str):
         raise TypeError("HISTORY: argument 'entity' = %r is invalid; valid: a string"
                         % (entity,))
-    for arg, value in (("point", point), ("h5file", h5file)):
-        if value is not None:
-            raise NotImplementedError("HISTORY: argument '%s' is not supported yet by "
-                                      "grain-parmec" % arg)
+    if h5file is not None:
+        raise NotImplementedError("HISTORY: argument 'h5file' is not supported yet by "
+                                  "grain-parmec")
     out = []
     if entity == "TIME":
         if not _model.particles:
             raise ValueError("HISTORY: no particle has been defined; valid: HISTORY after a "
                              "particle command")
+        if _model.started:  # requested between runs: from the current time on
+            out.append(_model.model.time())
         _model.histories.append((out, None))
         return out
     if entity in _BODY_ENTITIES:
-        i = _particle("HISTORY", "source", source)
-        column = _model.recorder.add(_model.system, "body", _model.particles[i], entity)
+        if isinstance(source, tuple):
+            if len(source) not in (4, 6) or not all(_is_number(c) for c in source):
+                raise ValueError("HISTORY: argument 'source' = %r is invalid; valid: a particle "
+                                 "number, a list of them, a sphere (x, y, z, r) or a box (xmin, "
+                                 "ymin, zmin, xmax, ymax, zmax)" % (source,))
+            # a live region: a sphere (x, y, z, r) or a box (xmin, ymin, zmin, xmax, ymax, zmax)
+            if point is not None:
+                raise ValueError("HISTORY: argument 'point' is invalid with a region source; "
+                                 "valid: a point of a single particle")
+            region = [float(c) for c in source]
+            if len(region) == 4 and not region[3] > 0 or \
+                    len(region) == 6 and not all(region[k] <= region[k + 3] for k in range(3)):
+                raise ValueError("HISTORY: argument 'source' = %r is invalid; valid: a sphere "
+                                 "(x, y, z, r > 0) or a box (xmin, ymin, zmin, xmax, ymax, zmax) "
+                                 "with min <= max" % (source,))
+            column = _model.recorder.add_region(_model.model, region, entity)
+        elif isinstance(source, list):
+            # a list of particles: the average of their values
+            if point is not None:
+                raise ValueError("HISTORY: argument 'point' is invalid with a list of sources; "
+                                 "valid: a point of a single particle")
+            if not source:
+                raise ValueError("HISTORY: argument 'source' = %r is invalid; valid: a particle "
+                                 "number or a non-empty list of them" % (source,))
+            column = [_particle_column(_particle("HISTORY", "source", i), entity)
+                      for i in source]
+        else:
+            i = _particle("HISTORY", "source", source)
+            if point is not None:
+                p = _vector("HISTORY", "point", point)
+                column = _model.recorder.add_point(_model.system, _body(i), p, entity)
+            else:
+                column = _particle_column(i, entity)
     elif entity in _SPRING_ENTITIES:
         if not isinstance(source, numbers.Integral) or not 0 <= source < len(_model.springs):
             raise ValueError("HISTORY: argument 'source' = %r is invalid; valid: [0, %d) (a "
@@ -590,8 +869,92 @@ def HISTORY(entity, source=0, point=None, h5file=None, h5last=False):
         raise ValueError("HISTORY: argument 'entity' = %r is invalid; valid values: TIME, %s"
                          % (entity, ", ".join(_BODY_ENTITIES + _SPRING_ENTITIES +
                                               _TORSION_ENTITIES + _JOINT_ENTITIES)))
+    if _model.started:
+        # requested between runs: the list starts with the current value (the next run's first
+        # sample is at the same time and is not repeated)
+        out.extend(_values(column, [[_model.recorder.value(c)] for c in
+                                    range(_model.recorder.size())]))
     _model.histories.append((out, column))
     return out
+
+
+def _particle_column(i, entity):
+    """A recorder column of an entity of particle i (a body, or a sphere that is not one)."""
+    if _model.particles[i] is None:
+        return _model.recorder.add_particle(_model.model, _model.spheres[i], entity)
+    return _model.recorder.add(_model.system, "body", _model.particles[i], entity)
+
+
+def _values(column, values):
+    """The samples of a history's column(s) in Parmec's sign: `values` per recorder column."""
+    if isinstance(column, list):  # the average over a list of particles
+        n = len(column)
+        return [sum(c) / n for c in zip(*(values[k] for k in column))]
+    if column < 0:  # a quantity grain reports with the opposite sign of Parmec's
+        return [-v for v in values[-1 - column]]
+    return list(values[column])
+
+
+_OUTPUT_ENTITIES = ["NUMBER", "COLOR", "DISPL", "LENGTH", "ORIENT", "ORIENT1", "ORIENT2",
+                    "ORIENT3", "LINVEL", "ANGVEL", "FORCE", "TORQUE", "F", "FN", "FT", "SF", "FF",
+                    "SS", "AREA", "PAIR", "XDIR", "YDIR", "ZDIR", "TRQROT", "TRQTOT", "TRQSPR",
+                    "JREAC"]
+# OUTPUT modes: (body files of grain::bodies::BodyVtkFiles, spheres, contacts)
+_OUTPUT_MODES = {"SPH": (0, True, False), "MESH": (2, False, False), "RB": (1, False, False),
+                 "CD": (0, True, True), "SL": (4, False, False), "ST": (8, False, False),
+                 "TS": (8, False, False), "JT": (16, False, False)}
+
+
+def OUTPUT(entities=None, subset=None, mode=None, format=None):
+    """A further family of output files, `<prefix>1_...`, `<prefix>2_...` in call order (the
+    default family of DEM is always written): of the particles `subset` (a number or a list;
+    default all) and the files of `mode` (SPH spheres, MESH meshes, RB bodies, CD spheres with
+    their contacts, SL springs, ST/TS torsion springs, JT joints; a string or a list; default
+    all). `entities` are checked against Parmec's list; each file carries all of grain's fields
+    for its kind (a superset). `format`: 'VTK' or Parmec's default 'XDMF' write grain's legacy
+    VTK files with ParaView series files."""
+    cmd = "OUTPUT"
+    if entities is not None:
+        names = [entities] if isinstance(entities, str) else entities
+        if not isinstance(names, (list, tuple)) or not names or \
+                not all(e in _OUTPUT_ENTITIES for e in names):
+            raise ValueError("%s: argument 'entities' = %r is invalid; valid: a list of %s"
+                             % (cmd, entities, ", ".join(_OUTPUT_ENTITIES)))
+    modes = list(_OUTPUT_MODES) if mode is None else [mode] if isinstance(mode, str) else mode
+    if not isinstance(modes, (list, tuple)) or not modes or \
+            not all(m in _OUTPUT_MODES for m in modes):
+        raise ValueError("%s: argument 'mode' = %r is invalid; valid: SPH, MESH, RB, CD, SL, ST, "
+                         "TS, JT or a list of them" % (cmd, mode))
+    formats = [format] if format is None or isinstance(format, str) else format
+    for f in formats:
+        if f in ("MED", "DUMP"):
+            raise NotImplementedError("%s: format '%s' is not supported by grain-parmec; valid: "
+                                      "'VTK' (or 'XDMF', written as VTK)" % (cmd, f))
+        if f not in (None, "VTK", "XDMF"):
+            raise ValueError("%s: argument 'format' = %r is invalid; valid: 'VTK', 'XDMF', "
+                             "'MED', 'DUMP' or a list of them" % (cmd, format))
+    if subset is None:
+        parts = []
+    elif isinstance(subset, (list, tuple)):
+        parts = [_particle(cmd, "subset", k) for k in subset]
+    else:
+        parts = [_particle(cmd, "subset", subset)]
+    bodies = [_model.particles[k] for k in parts if _model.particles[k] is not None]
+    spheres = [_model.spheres[k] for k in parts if k in _model.spheres]
+    if parts and not spheres:
+        spheres = [-1]  # a subset without spheres shows none of them
+    files, spheres_on, contacts = 0, False, False
+    for m in modes:
+        f, sp, cd = _OUTPUT_MODES[m]
+        files |= f
+        spheres_on |= sp
+        contacts |= cd
+    if parts and not bodies:
+        files = 0  # a subset of spheres only: no body files
+    _model.outputs += 1
+    _model.model.add_output(_model.outputs, bodies, [s for s in spheres if s >= 0], files,
+                            spheres_on and (not parts or any(s >= 0 for s in spheres)),
+                            contacts)
 
 
 def CRITICAL(perspring=None, perparticle=None):
@@ -600,7 +963,11 @@ def CRITICAL(perspring=None, perparticle=None):
     per-spring and per-particle estimates as lists of (step, number, omega, xi), ascending (both:
     a pair of lists)."""
     if perspring is None and perparticle is None:
-        return _model.system.critical()
+        h = _model.system.critical()
+        if _model.spheres:
+            _apply_granular()
+            h = min(h, _model.model.critical_contacts())
+        return h
     counts = []
     for name, value, total in (("perspring", perspring, len(_model.springs)),
                                ("perparticle", perparticle, len(_model.particles))):
@@ -613,7 +980,7 @@ def CRITICAL(perspring=None, perparticle=None):
                              % (name, value, total))
         counts.append(int(value))
     springs, bodies = _model.system.critical_lists(counts[0], counts[1])
-    parnum = {b: k for k, b in enumerate(_model.particles)}
+    parnum = {b: k for k, b in enumerate(_model.particles) if b is not None}
     particles = [(h, parnum[b], w, xi) for h, b, w, xi in bodies]
     springs = [tuple(x) for x in springs]
     if perspring is not None and perparticle is not None:
@@ -622,16 +989,15 @@ def CRITICAL(perspring=None, perparticle=None):
 
 
 def _interval(value, step, name):
+    """An output interval: a number, a TSERIES number or a callable of time [s]."""
     if value is None:
-        return step
+        return _grain.TimeFunction.constant(step)
     if isinstance(value, numbers.Integral) and not isinstance(value, bool) and \
             0 <= value < len(_model.tseries):
-        raise NotImplementedError("DEM: argument '%s' is a TSERIES number; this version of "
-                                  "grain-parmec takes a number" % name)
+        return _model.tseries[int(value)]
     if callable(value):
-        raise NotImplementedError("DEM: argument '%s' is a callable; this version of "
-                                  "grain-parmec takes a number" % name)
-    return _positive("DEM", name, value)
+        return _grain.TimeFunction.callable(_scalar_callback("DEM", name, value))
+    return _grain.TimeFunction.constant(_positive("DEM", name, value))
 
 
 def DEM(duration, step, interval=None, prefix=None, adaptive=None):
@@ -657,24 +1023,28 @@ def DEM(duration, step, interval=None, prefix=None, adaptive=None):
             raise ValueError("DEM: argument 'prefix' = %r is invalid after a run; valid: the "
                              "prefix of the first DEM (%r) until RESET" % (prefix, _model.prefix))
         _model.prefix = prefix
-    if adaptive not in (None, 0, 0.0):
-        raise NotImplementedError("DEM: argument 'adaptive' is not supported yet by grain-parmec")
+    if adaptive is not None:
+        a = _number("DEM", "adaptive", adaptive)
+        if not 0.0 <= a <= 1.0:
+            raise ValueError("DEM: argument 'adaptive' = %r is invalid; valid range: [0, 1] (0: "
+                             "off)" % (adaptive,))
+        if a > 0.0 and _model.model.particles():
+            raise NotImplementedError("DEM: argument 'adaptive' with spheres or obstacles is not "
+                                      "supported yet by grain-parmec (bodies alone: it is)")
+        _model.system.set_adaptive(a)
     if not _model.particles:
         raise ValueError("DEM: no particle has been defined; valid: DEM after a particle command")
     directory = os.path.dirname(_model.prefix)
     if directory:
         os.makedirs(directory, exist_ok=True)
     start = _time.perf_counter()
-    _model.system.run(d, h, files, history, _model.recorder, _model.prefix)
+    if _model.model.particles():
+        _apply_granular()
+    _model.model.run(d, h, files, history, _model.recorder, _model.prefix)
     _model.started = True
     times, values = _model.recorder.take()
     for out, column in _model.histories:
-        if column is None:
-            out.extend(times)
-        elif column < 0:  # a torque grain reports with the opposite sign of Parmec's
-            out.extend(-v for v in values[-1 - column])
-        else:
-            out.extend(values[column])
+        out.extend(times if column is None else _values(column, values))
     return _time.perf_counter() - start
 
 

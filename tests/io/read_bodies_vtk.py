@@ -7,7 +7,7 @@ For every series (ASCII and binary) and kind (bodies, meshes, springs, torsion s
 000000 ... N-1 with N the number of outputs and listed with their times in the .vtk.series file;
 each is legacy polydata in the series' format with 'grain <kind> t = <time>' in its header (a
 binary file is first walked with Python's struct); bodies and joints are points with one vertex
-each (torsion springs at the centre of their body 1), springs one line each between their two points; the fields have the expected names,
+each (torsion springs at the midpoint of their bodies' centres), springs one line each between their two points; the fields have the expected names,
 component counts and types, and every value equals the system's to a relative 1e-12 (17
 significant digits are written). The meshes file holds the boundary faces of the mesh body as
 polygons: 10 quadrilaterals, each on four of the mesh's nodes at their world positions (1e-12),
@@ -30,7 +30,8 @@ KINDS = {
         "body": (1, True, None), "velocity": (3, False, "velocity"),
         "omega": (3, False, "omega"), "force": (3, False, "force"),
         "torque": (3, False, "torque"), "mass": (1, False, "mass"),
-        "orientation": (4, False, "orientation"), "radius": (1, False, "radius")}),
+        "orientation": (4, False, "orientation"), "radius": (1, False, "radius"),
+        "displacement": (3, False, "displacement")}),
     "springs": ("springs", "cell", {
         "spring": (1, True, None), "force": (3, False, "force"),
         "total_force": (1, False, "total_force"), "elastic_force": (1, False, "elastic_force"),

@@ -67,9 +67,11 @@ const std::vector<long> kColours{3, 4, 7, 0, 4, 3, 5, 4, 10, 11, 9, 8, 5};
 struct Recorder {
   std::vector<std::string>* frames;
   const gb::Mesh* mesh;
-  Vec3 centre; // the mesh's centre of mass as given
+  Vec3 centre;              // the mesh's centre of mass as given
+  std::vector<Vec3>* start; // the positions at the first call (the writers' displacements)
   void operator()(const gb::BodySystem& s) const {
     const auto& b = s.bodies();
+    if (start->empty()) *start = b.position;
     std::string f = "{\"time\": " + num(s.time()) + ", \"meshes\": [";
     for (std::size_t k = 0; k < s.mesh_count(); ++k) {
       const std::size_t i = s.mesh_body_index(k);
@@ -88,7 +90,8 @@ struct Recorder {
            ", \"force\": " + vec(b.force[i]) + ", \"torque\": " + vec(b.torque[i]) +
            ", \"mass\": " + num(b.mass[i]) + ", \"orientation\": [" + num(q.w()) + ", " +
            num(q.x()) + ", " + num(q.y()) + ", " + num(q.z()) +
-           "], \"radius\": " + num(b.radius[i]) + "}";
+           "], \"radius\": " + num(b.radius[i]) +
+           ", \"displacement\": " + vec(b.position[i] - (*start)[i]) + "}";
     }
     f += "], \"springs\": [";
     for (std::size_t i = 0; i < s.spring_count(); ++i) {
@@ -103,8 +106,7 @@ struct Recorder {
     f += "], \"torsion_springs\": [";
     for (std::size_t i = 0; i < s.torsion_spring_count(); ++i) {
       const auto& r = s.torsion_result(i);
-      f += std::string(i ? ", " : "") +
-           "{\"point\": " + vec(b.position[static_cast<std::size_t>(s.torsion_link(i).body1)]) +
+      f += std::string(i ? ", " : "") + "{\"point\": " + vec(s.torsion_point(i)) +
            ", \"torque\": " + vec(r.torque) + ", \"xdir\": " + vec(r.x) +
            ", \"ydir\": " + vec(r.y) + ", \"zdir\": " + vec(r.z) +
            ", \"roll\": " + num(r.angles[0]) + ", \"pitch\": " + num(r.angles[1]) +
@@ -164,11 +166,12 @@ int main(int argc, char** argv) {
     tp.yaw.damping_ratio = 0.2;
     s.add_torsion_spring(tp, 2, 1, Vec3::UnitZ(), Vec3::UnitX());
     std::vector<std::string> frames;
+    std::vector<Vec3> start;
     s.steps(kSteps, 1e-3,
             grain::io::every_steps(
                 kStepsPerOutput, gb::body_vtk((dir / "sys").string()),
                 gb::body_vtk((dir / "sys_binary").string(), grain::io::VtkFormat::binary),
-                Recorder{&frames, &mesh, gb::mass_properties(mesh).centre}));
+                Recorder{&frames, &mesh, gb::mass_properties(mesh).centre, &start}));
     std::ofstream out(dir / "expected.json");
     out << "{\"series\": {\"sys\": \"ascii\", \"sys_binary\": \"binary\"},\n";
     // the mesh's faces as node sets with their colours: 10 boundary faces, the listed ones 5

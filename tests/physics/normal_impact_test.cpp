@@ -202,6 +202,27 @@ TEST_CASE("linear spring-dashpot: restitution, contact time and maximum overlap,
                                          << " at t_c/200, " << de400 << " at t_c/400");
 }
 
+TEST_CASE("linear spring-dashpot with a damping ratio: e = exp(-pi zeta / sqrt(1 - zeta^2))") {
+  // the third seed's GRANULAR damper: eta = 2 zeta sqrt(m* K) per contact, whatever the pair's
+  // restitution (0.9 here); the rebound, contact time and overlap of the damped oscillator
+  using M = normal::LinearSpringDashpot;
+  Errors errors;
+  const double k = 1e4, v = 1.0;
+  for (bool wall : {true, false})
+    for (double zeta : {0.1, 0.3, 0.5}) {
+      CAPTURE(wall);
+      CAPTURE(zeta);
+      const double e = std::exp(-pi * zeta / std::sqrt(1.0 - zeta * zeta));
+      const auto ref = linear_closed_form(k, e, v);
+      const auto r = impact<Sphere, M>({.stiffness = k, .damping_ratio = zeta}, 0.9, wall, v,
+                                       ref.contact_time / 2000);
+      CHECK_REL(errors, "e", r.restitution, e, class_b);
+      CHECK_REL(errors, "t_c", r.contact_time, ref.contact_time, class_b);
+      CHECK_REL(errors, "delta_max", r.max_overlap, ref.max_overlap, class_b);
+    }
+  MESSAGE("relative errors at t_c/2000:" << errors.summary());
+}
+
 TEST_CASE("linear spring-dashpot: each Hertz-equivalent formulation matches its Hertz quantity") {
   using M = normal::LinearSpringDashpot;
   using normal::Equivalence;

@@ -108,6 +108,47 @@ TEST_CASE("io::every keeps to the grid start + k interval over a long run") {
   CHECK(off_grid == 0);
 }
 
+TEST_CASE("io::every with an interval that is a function of time") {
+  // interval(t) = 0.1 + 0.1 t, evaluated at each step (dt = 1e-3): an output at the first step
+  // whose time reaches the last due time plus interval(t), which then advances by it; and one at
+  // the end. The due times: 0, 0.1, then t_(k+1) = t_k + 0.1 + 0.1 t with t the step of output
+  Sim3::Params p;
+  p.time_step = 1e-3;
+  Sim3 sim(p);
+  const auto m = sim.add_material({.name = "glass", .density = 2500, .young = 1e7});
+  sim.add_particle({.position = {0, 0, 0}, .radius = 0.05, .material = m});
+  std::vector<double> times;
+  const auto interval = TimeFunction::table({{0.0, 0.1}, {1.0, 0.2}});
+  sim.run(1.0, io::every(interval, [&](const Sim3& s) { times.push_back(s.time()); }));
+  // by hand: step k at t = k ms; output when t >= due + 0.1 + 0.1 t, i.e. t >= (due + 0.1) / 0.9
+  std::vector<double> expected{0.0};
+  double due = 0.0;
+  for (int k = 1; k <= 1000; ++k) {
+    const double t = k * 1e-3;
+    if (t + 1e-6 >= due + 0.1 + 0.1 * t) {
+      due += 0.1 + 0.1 * t;
+      expected.push_back(t);
+    }
+  }
+  if (expected.back() != 1.0) expected.push_back(1.0);
+  REQUIRE(times.size() == expected.size());
+  for (std::size_t k = 0; k < times.size(); ++k)
+    CHECK(std::abs(times[k] - expected[k]) < 1e-9);
+  CHECK(expected.size() == 8); // 0, 0.112, 0.235, 0.372, 0.525, 0.694, 0.882, 1
+  // a constant interval gives the outputs of the fixed-interval every
+  times.clear();
+  sim.run(0.5, io::every(TimeFunction::callable([](double) { return 0.25; }),
+                         [&](const Sim3& s) { times.push_back(s.time()); }));
+  CHECK(times.size() == 3); // 1.0, 1.25, 1.5
+  // an interval that is not positive names the time
+  CHECK(has(error_of([&] {
+              sim.run(0.1, io::every(TimeFunction::callable(
+                                         [](double t) { return t > 1.55 ? 0.0 : 0.01; }),
+                                     [](const Sim3&) {}));
+            }),
+            {"grain::io::every", "interval = 0", "at t = 1.55"}));
+}
+
 // ------------------------------------------------------------------ failed writes
 TEST_CASE("a CSV history, an io::print file and a VTK series that cannot be written throw") {
   if (!have_full_device()) {

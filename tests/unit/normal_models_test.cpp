@@ -403,6 +403,15 @@ TEST_CASE("linear spring-dashpot: Hertz-equivalent stiffness formulations and da
   const auto push = pair_contact<3>(1e-6, 1.0);
   CHECK(M_::force(push, pair, {.stiffness = 500, .damping = 0.02, .no_cohesion = true}, h).force ==
         grain::test::approx(500 * 1e-6 + 0.02).epsilon(1e-12));
+  // a damping ratio: eta = 2 zeta sqrt(m* K) with the contact's own m*; `damping` wins over it
+  const auto rz = M_::force(push, pair, {.stiffness = 500, .damping_ratio = 1.5}, h);
+  CHECK(rz.damping == grain::test::approx(2 * 1.5 * std::sqrt(push.m_eff * 500)).epsilon(1e-14));
+  CHECK(
+      M_::force(push, pair, {.stiffness = 500, .damping = 0.02, .damping_ratio = 1.5}, h).damping ==
+      0.02);
+  CHECK(grain::test::has(
+      error_of([] { M_::validate({.stiffness = 500, .damping_ratio = std::nan("")}); }),
+      {"damping_ratio", "[0, inf)"}));
 }
 
 TEST_CASE("linear spring-dashpot per contact: impact velocity measured once, floor, reset") {

@@ -487,6 +487,9 @@ TEST_CASE("spring-dashpot-slider: damping from the tangential restitution (Deen 
         grain::test::approx(0.7).epsilon(1e-9));
   CHECK(eta_of(g3, {.stiffness = k}) ==
         grain::test::approx(0.3 * std::sqrt(k / 2000.0)).epsilon(1e-9));
+  // a damping factor: eta_t = f eta_n (the third seed's GRANULAR: f = kskn)
+  CHECK(eta_of(g3, {.stiffness = k, .damping_factor = 0.5}) ==
+        grain::test::approx(0.5 * 0.3).epsilon(1e-9));
   // the spring integrates the slip velocity that moved the contact; the dashpot sees the
   // tangential velocity of the forces (they differ under velocity Verlet)
   {

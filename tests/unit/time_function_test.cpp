@@ -13,6 +13,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -158,6 +159,37 @@ TEST_CASE("time function: activity interval is closed, zero while inactive, no t
   CHECK(g(1.0) == 0.0);
   CHECK(f(1.0) == grain::test::approx(3.0).epsilon(1e-15));
   CHECK(has(g.describe(), "active in [0, 0.25]"));
+}
+
+TEST_CASE("time function: a callable is the user's function, with the activity interval") {
+  int calls = 0;
+  const auto f = TimeFunction::callable([&calls](double t) {
+    ++calls;
+    return 2.0 * t * t;
+  });
+  CHECK(f.kind() == TimeFunction::Kind::callable);
+  CHECK(f(1.5) == 4.5);
+  CHECK(f.value(-1.0) == 2.0);
+  CHECK(calls == 2);
+  const auto g = f.active(0.0, 1.0);
+  CHECK(g(2.0) == 0.0); // inactive: not called
+  CHECK(calls == 2);
+  CHECK(has(g.describe(), {"a function of time", "active in [0, 1]"}));
+  // an exception of the user's function reaches the caller
+  const auto bad = TimeFunction::callable([](double) -> double { throw std::runtime_error("no"); });
+  CHECK_THROWS_AS((void)bad(0.0), std::runtime_error);
+  // a vector callable is called once per time for all its components
+  int vcalls = 0;
+  const auto v = VectorTimeFunction<3>::callable([&vcalls](double t) {
+    ++vcalls;
+    return Vec3(t, 2.0 * t, 3.0 * t);
+  });
+  CHECK(v(2.0) == Vec3(2.0, 4.0, 6.0));
+  CHECK(v.value(2.0) == Vec3(2.0, 4.0, 6.0));
+  CHECK(vcalls == 1);
+  CHECK(v.component(1)(3.0) == 6.0);
+  CHECK(vcalls == 2);
+  CHECK(has(error_of([] { (void)VectorTimeFunction<3>::callable({}); }), {"callable", "empty"}));
 }
 
 TEST_CASE("table: interpolation at and between points, end values held outside") {

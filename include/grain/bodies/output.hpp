@@ -313,32 +313,46 @@ inline std::pair<Vec3, Vec3> spring_line(const BodySystem& s, std::size_t i) {
 
 /// Writes the bodies of a system as legacy VTK polydata (see the file comment).
 inline void write_bodies_vtk(const BodySystem& s, const std::string& path,
-                             io::VtkFormat format = io::VtkFormat::ascii) {
+                             io::VtkFormat format = io::VtkFormat::ascii,
+                             const std::vector<std::size_t>& subset = {},
+                             const std::vector<Vec3>* start = nullptr) {
   namespace d = grain::io::detail;
   const RigidBodies& b = s.bodies();
-  const std::size_t n = b.size();
+  std::vector<std::size_t> all;
+  if (subset.empty())
+    for (std::size_t i = 0; i < b.size(); ++i)
+      all.push_back(i);
+  const std::vector<std::size_t>& ids = subset.empty() ? all : subset;
+  const std::size_t n = ids.size();
   d::LegacyVtkFile o(path, format, "bodies", s.time(), "grain::bodies::write_bodies_vtk");
-  o.points(n, [&](std::size_t k) { return d::xyz(b.position[k]); });
+  o.points(n, [&](std::size_t k) { return d::xyz(b.position[ids[k]]); });
   o.vertices(n);
   if (n == 0) return o.close(path);
   o.line("POINT_DATA " + std::to_string(n));
-  o.field("body", n, [](std::size_t k) { return static_cast<int>(k); });
-  o.field("velocity", n, [&](std::size_t k) { return d::xyz(b.velocity[k]); });
-  o.field("omega", n, [&](std::size_t k) { return d::xyz(b.omega[k]); });
-  o.field("force", n, [&](std::size_t k) { return d::xyz(b.force[k]); });
-  o.field("torque", n, [&](std::size_t k) { return d::xyz(b.torque[k]); });
-  o.field("mass", n, [&](std::size_t k) { return b.mass[k]; });
+  o.field("body", n, [&](std::size_t k) { return static_cast<int>(ids[k]); });
+  o.field("velocity", n, [&](std::size_t k) { return d::xyz(b.velocity[ids[k]]); });
+  o.field("omega", n, [&](std::size_t k) { return d::xyz(b.omega[ids[k]]); });
+  o.field("force", n, [&](std::size_t k) { return d::xyz(b.force[ids[k]]); });
+  o.field("torque", n, [&](std::size_t k) { return d::xyz(b.torque[ids[k]]); });
+  o.field("mass", n, [&](std::size_t k) { return b.mass[ids[k]]; });
   o.field("orientation", n, [&](std::size_t k) {
-    return d::orientation_value(Eigen::Quaterniond(b.orientation[k] * b.axes[k].conjugate()));
+    const std::size_t i = ids[k];
+    return d::orientation_value(Eigen::Quaterniond(b.orientation[i] * b.axes[i].conjugate()));
   });
-  o.field("radius", n, [&](std::size_t k) { return b.radius[k]; });
+  o.field("radius", n, [&](std::size_t k) { return b.radius[ids[k]]; });
+  if (start)
+    o.field("displacement", n, [&](std::size_t k) {
+      const std::size_t i = ids[k];
+      return d::xyz(Vec3(i < start->size() ? Vec3(b.position[i] - (*start)[i]) : Vec3::Zero()));
+    });
   o.close(path);
 }
 
 /// Writes the boundary surfaces of the mesh bodies of a system, in world coordinates at the
 /// bodies' current poses, as legacy VTK polydata (see the file comment).
 inline void write_meshes_vtk(const BodySystem& s, const std::string& path,
-                             io::VtkFormat format = io::VtkFormat::ascii) {
+                             io::VtkFormat format = io::VtkFormat::ascii,
+                             const std::vector<std::size_t>& subset = {}) {
   namespace d = grain::io::detail;
   const RigidBodies& b = s.bodies();
   std::vector<Vec3> pts;
@@ -347,6 +361,7 @@ inline void write_meshes_vtk(const BodySystem& s, const std::string& path,
   std::vector<Vec3> velocity;
   for (std::size_t k = 0; k < s.mesh_count(); ++k) {
     const std::size_t i = s.mesh_body_index(k);
+    if (!subset.empty() && std::find(subset.begin(), subset.end(), i) == subset.end()) continue;
     const MeshSurface& m = s.mesh_surface(k);
     const Eigen::Matrix3d r = rotation(b, i);
     const std::size_t base = pts.size();
@@ -423,7 +438,8 @@ inline void write_joints_vtk(const BodySystem& s, const std::string& path,
   o.close(path);
 }
 
-/// Torsion springs as points at the centre of body 1 with one vertex each; point data
+/// Torsion springs as points (`BodySystem::torsion_point`: the reference point given, or the
+/// midpoint of the two bodies' centres) with one vertex each; point data
 /// `torsion_spring` (int index), `torque` (vector, on body 1) [N m], `xdir`, `ydir`, `zdir`
 /// (body 1's axes of the spring, world) [-], `roll`, `pitch`, `yaw` [rad], `spring_torque` and
 /// `total_torque` (3 components: the elastic and the total torque of the roll, pitch and yaw
@@ -434,9 +450,7 @@ inline void write_torsion_springs_vtk(const BodySystem& s, const std::string& pa
   const std::size_t n = s.torsion_spring_count();
   d::LegacyVtkFile o(path, format, "torsion_springs", s.time(),
                      "grain::bodies::write_torsion_springs_vtk");
-  o.points(n, [&](std::size_t k) {
-    return d::xyz(s.bodies().position[static_cast<std::size_t>(s.torsion_link(k).body1)]);
-  });
+  o.points(n, [&](std::size_t k) { return d::xyz(s.torsion_point(k)); });
   o.vertices(n);
   if (n == 0) return o.close(path);
   o.line("POINT_DATA " + std::to_string(n));
@@ -455,16 +469,34 @@ inline void write_torsion_springs_vtk(const BodySystem& s, const std::string& pa
   o.close(path);
 }
 
+/// The files of a BodyVtkWriter (a bit set).
+enum BodyVtkFiles : unsigned {
+  bodies_file = 1,
+  meshes_file = 2,
+  springs_file = 4,
+  torsion_springs_file = 8,
+  joints_file = 16,
+  all_body_files = 31
+};
+
 /// Output action (for io::every): the bodies file, and the meshes, springs, torsion-springs and
 /// joints files if the system has them, numbered 000000, 000001, ..., and their series files.
+/// `subset` (body indices; empty: all) restricts the bodies and meshes files to those bodies
+/// (Parmec's OUTPUT subsets); `files` selects the files (BodyVtkFiles). The bodies file has a
+/// `displacement` field: from the position at the writer's first call.
 struct BodyVtkWriter {
   std::string prefix;
   io::VtkFormat format = io::VtkFormat::ascii;
   int count = 0;
   std::vector<std::pair<std::string, double>> body_files{}, mesh_files{}, spring_files{},
       torsion_files{}, joint_files{};
+  std::vector<std::size_t> subset{};
+  unsigned files = all_body_files;
+  std::vector<Vec3> start{};
 
   void operator()(const BodySystem& s) {
+    for (std::size_t i = start.size(); i < s.bodies().size(); ++i)
+      start.push_back(s.bodies().position[i]);
     const std::filesystem::path base(prefix);
     if (base.has_parent_path()) std::filesystem::create_directories(base.parent_path());
     const std::string stem = base.filename().string();
@@ -476,12 +508,19 @@ struct BodyVtkWriter {
       files.emplace_back(stem + name, s.time());
       io::detail::write_series(prefix, kind, files, "grain::bodies::body_vtk");
     };
-    one("bodies", write_bodies_vtk, body_files);
-    if (s.mesh_count() > 0) one("meshes", write_meshes_vtk, mesh_files);
-    if (s.spring_count() > 0) one("springs", write_springs_vtk, spring_files);
-    if (s.torsion_spring_count() > 0)
+    const auto bodies = [this](const BodySystem& x, const std::string& p, io::VtkFormat f) {
+      write_bodies_vtk(x, p, f, subset, &start);
+    };
+    const auto meshes = [this](const BodySystem& x, const std::string& p, io::VtkFormat f) {
+      write_meshes_vtk(x, p, f, subset);
+    };
+    if (files & bodies_file) one("bodies", bodies, body_files);
+    if ((files & meshes_file) && s.mesh_count() > 0) one("meshes", meshes, mesh_files);
+    if ((files & springs_file) && s.spring_count() > 0)
+      one("springs", write_springs_vtk, spring_files);
+    if ((files & torsion_springs_file) && s.torsion_spring_count() > 0)
       one("torsion_springs", write_torsion_springs_vtk, torsion_files);
-    if (s.joint_count() > 0) one("joints", write_joints_vtk, joint_files);
+    if ((files & joints_file) && s.joint_count() > 0) one("joints", write_joints_vtk, joint_files);
   }
 };
 

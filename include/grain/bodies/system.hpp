@@ -116,6 +116,7 @@
 #include <grain/bodies/spring.hpp>
 #include <grain/bodies/torsion_spring.hpp>
 #include <grain/bodies/unspring.hpp>
+#include <grain/conditions/conditions.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/observer.hpp>
 #include <grain/core/time_function.hpp>
@@ -130,6 +131,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -155,6 +157,8 @@ struct TorsionLink {
   long body1 = 0;
   long body2 = world;
   TorsionFrames frames{};
+  bool has_reference = false;    ///< a reference point was given
+  Vec3 reference = Vec3::Zero(); ///< the reference point in body 1's local frame [m]
 };
 
 /// A ball joint: point local1 of body 1 coincides with point local2 of body 2 (or a fixed point).
@@ -327,7 +331,8 @@ public:
   /// directions zdir (yaw) and xdir (roll) now (torsion_spring.hpp); returns its index. Throws
   /// InputError for an unknown body, body1 = world, body1 = body2 or bad parameters.
   std::size_t add_torsion_spring(TorsionSpringParams p, long body1, long body2, const Vec3& zdir,
-                                 const Vec3& xdir) {
+                                 const Vec3& xdir,
+                                 const std::optional<Vec3>& reference = std::nullopt) {
     if (p.name == "TORSION_SPRING") p.name += " " + std::to_string(torsion_links_.size());
     const std::string& obj = p.name;
     require_pair(obj, body1, body2);
@@ -336,6 +341,11 @@ public:
     l.body1 = body1;
     l.body2 = body2;
     l.frames = torsion_frames(orientation_of(body1), orientation_of(body2), zdir, xdir, obj);
+    if (reference) {
+      detail::require_finite_vec(obj, "reference point", *reference);
+      l.has_reference = true;
+      l.reference = to_local(bodies_, static_cast<std::size_t>(body1), *reference);
+    }
     torsion_params_.push_back(std::move(p));
     torsion_links_.push_back(l);
     torsion_results_.emplace_back();
@@ -408,6 +418,65 @@ public:
     initialized_ = false;
   }
 
+  /// Restrains body b (Parmec's RESTRAIN): its velocity has no component along the `linear`
+  /// directions and its spatial angular velocity none about the `angular` axes (world
+  /// coordinates; up to 3 independent directions each, any length). The reaction is the
+  /// constraint's: a linear direction removes that velocity component, an angular axis applies
+  /// the torque about it that keeps the rotation about it zero (for a body whose inertia is not
+  /// isotropic this changes the free components too, as a real bearing does). Replaces an
+  /// earlier restraint of b; empty lists remove it. Joints, springs and critical steps see the
+  /// restrained body through its constrained inverse mass. Throws InputError for an unknown
+  /// body, more than 3, non-finite, zero or dependent directions.
+  void restrain(std::size_t b, const std::vector<Vec3>& linear,
+                const std::vector<Vec3>& angular = {}) {
+    const std::string obj = "BodySystem::restrain (body " + std::to_string(b) + ")";
+    require_body(obj, "body", static_cast<long>(b), false);
+    const auto lin = grain::detail::orthonormal<3>(linear, obj, "linear");
+    const auto ang = grain::detail::orthonormal<3>(angular, obj, "angular");
+    BodyControl& c = control(b);
+    c.linear = lin;
+    c.angular = ang;
+    enforce_now(b);
+    initialized_ = false;
+  }
+
+  /// Prescribes the motion of body b (Parmec's PRESCRIBE): a linear history [m/s or m/s^2] of
+  /// its centre and an angular history [rad/s or rad/s^2] of its spatial angular velocity, each
+  /// optional, read as velocities or accelerations by `kind` ("vv", "va", "av", "aa"; linear
+  /// first). Each world component is prescribed while its function is active and follows the
+  /// dynamics otherwise; prescribed components override the restraints (a restrained direction
+  /// then restrains what the prescribed axes leave free). Velocity histories set the velocity
+  /// now. Replaces an earlier history of the same part; `std::nullopt` keeps it. Throws
+  /// InputError for an unknown body, no history, or a bad kind.
+  void prescribe_motion(std::size_t b, std::optional<VectorTimeFunction<3>> linear,
+                        std::optional<VectorTimeFunction<3>> angular,
+                        std::string_view kind = "vv") {
+    const std::string obj = "BodySystem::prescribe_motion (body " + std::to_string(b) + ")";
+    require_body(obj, "body", static_cast<long>(b), false);
+    const auto [lk, ak] = motion_kinds(kind, obj);
+    if (!linear && !angular)
+      throw InputError(obj + ": linear = angular = none is invalid; valid: at least one history");
+    BodyControl& c = control(b);
+    if (linear) {
+      c.lin_motion = std::move(linear);
+      c.lin_kind = lk;
+    }
+    if (angular) {
+      c.ang_motion = std::move(angular);
+      c.ang_kind = ak;
+    }
+    enforce_now(b);
+    initialized_ = false;
+  }
+
+  /// The restrained directions (linear, angular; orthonormal) of body b; empty if none.
+  std::pair<std::vector<Vec3>, std::vector<Vec3>> restraints(std::size_t b) const {
+    const long k = control_index(b);
+    if (k < 0) return {};
+    return {controls_[static_cast<std::size_t>(k)].linear,
+            controls_[static_cast<std::size_t>(k)].angular};
+  }
+
   /// Adaptive stepping in `run` and `steps`: each step is min(h, factor x critical()), h the step
   /// given to them. factor in (0, 1]; 0 switches it off (the default).
   void set_adaptive(double factor) {
@@ -475,13 +544,13 @@ public:
     grain::detail::require(joint_iterations >= 0, "BodySystem", "joint_iterations",
                            joint_iterations, "[0, inf)");
     if (!initialized_) initialize();
+    save_controls(h);
     kick(bodies_, h);
-    if (joints_.empty()) {
-      clear_forces(bodies_);
-      kick_drift(bodies_, h); // pure drift: the forces are zero
-    } else {
+    enforce_controls(h, Stage::mid);
+    if (joints_.empty())
+      drift(h);
+    else
       drift_with_joints(h);
-    }
     time_ += h;
   }
 
@@ -490,6 +559,7 @@ public:
   void finish_step(double h) {
     compute_forces(h);
     kick(bodies_, h);
+    enforce_controls(h, Stage::end);
     if (!joints_.empty()) {
       factor_joints();
       impulse_end_.assign(joints_.size(), Vec3::Zero());
@@ -598,6 +668,16 @@ public:
   const TorsionSpringParams& torsion_params(std::size_t i) const { return torsion_params_.at(i); }
   const TorsionLink& torsion_link(std::size_t i) const { return torsion_links_.at(i); }
   const TorsionResult& torsion_result(std::size_t i) const { return torsion_results_.at(i); }
+  /// Where torsion spring i is shown (output only) [m]: its reference point, which moves with
+  /// body 1, if one was given, else the midpoint of the two bodies' centres (body 1's centre
+  /// for a spring to the world).
+  Vec3 torsion_point(std::size_t i) const {
+    const TorsionLink& l = torsion_links_.at(i);
+    const auto b1 = static_cast<std::size_t>(l.body1);
+    if (l.has_reference) return to_world(bodies_, b1, l.reference);
+    if (l.body2 == world) return bodies_.position[b1];
+    return 0.5 * (bodies_.position[b1] + bodies_.position[static_cast<std::size_t>(l.body2)]);
+  }
 
   const BallJoint& joint(std::size_t i) const { return joints_.at(i); }
   const JointResult& joint_result(std::size_t i) const { return joint_results_.at(i); }
@@ -829,14 +909,240 @@ private:
   Vec3 omega_of(long b) const {
     return b == world ? Vec3(Vec3::Zero()) : bodies_.omega[static_cast<std::size_t>(b)];
   }
+  /// The inverse world inertia of body b as its restraints and prescribed rotation leave it
+  /// (zero for world): J^-1 - J^-1 B (B^T J^-1 B)^-1 B^T J^-1, B the constrained axes.
   Eigen::Matrix3d inverse_inertia_of(long b) const {
-    return b == world ? Eigen::Matrix3d(Eigen::Matrix3d::Zero())
-                      : inverse_world_inertia(bodies_, static_cast<std::size_t>(b));
+    if (b == world) return Eigen::Matrix3d::Zero();
+    const auto i = static_cast<std::size_t>(b);
+    const Eigen::Matrix3d inv = inverse_world_inertia(bodies_, i);
+    const long k = control_index(i);
+    if (k < 0) return inv;
+    const auto basis =
+        constrained_axes(controls_[static_cast<std::size_t>(k)], true, time_, nullptr);
+    return constrained_inverse(inv, basis);
   }
-  /// The inverse-mass matrix of the material point of body b at world point x (zero for world).
+  /// The inverse mass matrix of body b's centre as its restraints and prescribed motion leave
+  /// it (zero for world): (1/m) (1 - B B^T).
+  Eigen::Matrix3d inverse_mass_of(long b) const {
+    if (b == world) return Eigen::Matrix3d::Zero();
+    const auto i = static_cast<std::size_t>(b);
+    Eigen::Matrix3d im = bodies_.inv_mass[i] * Eigen::Matrix3d::Identity();
+    const long k = control_index(i);
+    if (k < 0) return im;
+    for (const Vec3& d :
+         constrained_axes(controls_[static_cast<std::size_t>(k)], false, time_, nullptr))
+      im -= bodies_.inv_mass[i] * d * d.transpose();
+    return im;
+  }
+  /// The inverse-mass matrix of the material point of body b at world point x (zero for world;
+  /// restraints and prescribed motion taken into account).
   Eigen::Matrix3d point_k(long b, const Vec3& x) const {
-    return b == world ? Eigen::Matrix3d(Eigen::Matrix3d::Zero())
-                      : point_inverse_mass(bodies_, static_cast<std::size_t>(b), x);
+    if (b == world) return Eigen::Matrix3d::Zero();
+    const auto i = static_cast<std::size_t>(b);
+    if (control_index(i) < 0) return point_inverse_mass(bodies_, i, x);
+    const Eigen::Matrix3d rx = detail::skew(x - bodies_.position[i]);
+    return inverse_mass_of(b) + rx.transpose() * inverse_inertia_of(b) * rx;
+  }
+
+  // ---------------------------------------------------------------- restraints, prescribed motion
+  /// The restraints and prescribed motion of one body, and its state at the start of the step.
+  struct BodyControl {
+    std::size_t body = 0;
+    std::vector<Vec3> linear{}, angular{}; ///< restrained directions (orthonormal)
+    std::optional<VectorTimeFunction<3>> lin_motion{}, ang_motion{};
+    MotionKind lin_kind = MotionKind::velocity, ang_kind = MotionKind::velocity;
+    Vec3 v0 = Vec3::Zero(), w0 = Vec3::Zero();   ///< velocities at the start of the step
+    Vec3 a = Vec3::Zero(), alpha = Vec3::Zero(); ///< accelerations at mid-step
+    std::array<bool, 3> lin_on{}, ang_on{};      ///< prescribed components this step
+  };
+  enum class Stage { now, mid, end };
+
+  long control_index(std::size_t b) const { return b < control_of_.size() ? control_of_[b] : -1; }
+  BodyControl& control(std::size_t b) {
+    if (control_of_.size() < bodies_.size()) control_of_.resize(bodies_.size(), -1);
+    if (control_of_[b] < 0) {
+      control_of_[b] = static_cast<long>(controls_.size());
+      controls_.push_back(BodyControl{});
+      controls_.back().body = b;
+    }
+    return controls_[static_cast<std::size_t>(control_of_[b])];
+  }
+
+  /// Which world components of a history are prescribed at t.
+  static std::array<bool, 3> prescribed(const std::optional<VectorTimeFunction<3>>& f, double t) {
+    std::array<bool, 3> on{};
+    if (f)
+      for (int k = 0; k < 3; ++k)
+        on[static_cast<std::size_t>(k)] = f->component_active(k, t);
+    return on;
+  }
+
+  /// The orthonormal constrained axes of a body's translation (angular = false) or rotation at t:
+  /// the prescribed world axes first, then the restrained directions with their parts along the
+  /// prescribed axes removed (those that are left). With `targets`, also the target velocity
+  /// component along each axis (the prescribed value `values`, 0 for a restrained one).
+  static std::vector<Vec3> constrained_axes(const BodyControl& c, bool angular, double t,
+                                            std::vector<double>* targets,
+                                            const Vec3* values = nullptr,
+                                            const std::array<bool, 3>* on_given = nullptr) {
+    std::vector<Vec3> basis;
+    const std::array<bool, 3> on =
+        on_given ? *on_given : prescribed(angular ? c.ang_motion : c.lin_motion, t);
+    for (int k = 0; k < 3; ++k)
+      if (on[static_cast<std::size_t>(k)]) {
+        basis.push_back(Vec3::Unit(k));
+        if (targets) targets->push_back(values ? (*values)[k] : 0.0);
+      }
+    for (const Vec3& d : angular ? c.angular : c.linear) {
+      Vec3 u = d;
+      for (const Vec3& b : basis)
+        u -= u.dot(b) * b;
+      const double n = u.norm();
+      if (n <= 1e-9) continue;
+      basis.push_back(u / n);
+      if (targets) targets->push_back(0.0);
+    }
+    return basis;
+  }
+
+  /// inv - inv B (B^T inv B)^-1 B^T inv.
+  static Eigen::Matrix3d constrained_inverse(const Eigen::Matrix3d& inv,
+                                             const std::vector<Vec3>& basis) {
+    if (basis.empty()) return inv;
+    if (basis.size() == 3) return Eigen::Matrix3d::Zero();
+    Eigen::Matrix<double, 3, Eigen::Dynamic> B(3, static_cast<Eigen::Index>(basis.size()));
+    for (std::size_t k = 0; k < basis.size(); ++k)
+      B.col(static_cast<Eigen::Index>(k)) = basis[k];
+    const Eigen::MatrixXd S = B.transpose() * inv * B;
+    const Eigen::Matrix<double, 3, Eigen::Dynamic> IB = inv * B;
+    return inv - IB * S.ldlt().solve(IB.transpose());
+  }
+
+  /// Sets the constrained components of v (linear: the axes' components to their targets) and
+  /// of omega (with the constraint's reaction torque: omega -= J^-1 B (B^T J^-1 B)^-1
+  /// (B^T omega - targets)).
+  void enforce(std::size_t i, const BodyControl& c, const Vec3& vt, const Vec3& wt,
+               const std::array<bool, 3>& lin_on, const std::array<bool, 3>& ang_on) {
+    std::vector<double> tl, ta;
+    const auto bl = constrained_axes(c, false, 0.0, &tl, &vt, &lin_on);
+    for (std::size_t k = 0; k < bl.size(); ++k)
+      bodies_.velocity[i] -= (bodies_.velocity[i].dot(bl[k]) - tl[k]) * bl[k];
+    const auto ba = constrained_axes(c, true, 0.0, &ta, &wt, &ang_on);
+    if (ba.empty()) return;
+    Vec3& w = bodies_.omega[i];
+    if (ba.size() == 3) {
+      Eigen::Matrix3d B;
+      for (int k = 0; k < 3; ++k)
+        B.col(k) = ba[static_cast<std::size_t>(k)];
+      w = B * Vec3(ta[0], ta[1], ta[2]); // B orthonormal: omega = B targets
+      return;
+    }
+    const Eigen::Matrix3d inv = inverse_world_inertia(bodies_, i);
+    Eigen::Matrix<double, 3, Eigen::Dynamic> B(3, static_cast<Eigen::Index>(ba.size()));
+    Eigen::VectorXd r(static_cast<Eigen::Index>(ba.size()));
+    for (std::size_t k = 0; k < ba.size(); ++k) {
+      B.col(static_cast<Eigen::Index>(k)) = ba[k];
+      r(static_cast<Eigen::Index>(k)) = ba[k].dot(w) - ta[k];
+    }
+    const Eigen::MatrixXd S = B.transpose() * inv * B;
+    w -= inv * B * S.ldlt().solve(r);
+  }
+
+  /// The prescribed velocities at a stage of the step from t (mid: t + h/2, end: t + h; now: at
+  /// the current time, between runs).
+  std::pair<Vec3, Vec3> targets(const BodyControl& c, double h, Stage stage) const {
+    Vec3 v = Vec3::Zero(), w = Vec3::Zero();
+    const double s = stage == Stage::mid ? 0.5 * h : h;
+    const double t = stage == Stage::now ? time_ : time_ + s;
+    // an acceleration history keeps the current velocity between runs
+    const bool now = stage == Stage::now;
+    if (c.lin_motion)
+      v = c.lin_kind == MotionKind::velocity ? c.lin_motion->value(t)
+          : now                              ? bodies_.velocity[c.body]
+                                             : Vec3(c.v0 + s * c.a);
+    if (c.ang_motion)
+      w = c.ang_kind == MotionKind::velocity ? c.ang_motion->value(t)
+          : now                              ? bodies_.omega[c.body]
+                                             : Vec3(c.w0 + s * c.alpha);
+    return {v, w};
+  }
+
+  /// At the start of a step of h: the velocities, which components are prescribed over the
+  /// step (those active at mid-step) and the mid-step accelerations.
+  void save_controls(double h) {
+    const double tm = time_ + 0.5 * h;
+    for (BodyControl& c : controls_) {
+      c.v0 = bodies_.velocity[c.body];
+      c.w0 = bodies_.omega[c.body];
+      c.lin_on = prescribed(c.lin_motion, tm);
+      c.ang_on = prescribed(c.ang_motion, tm);
+      if (c.lin_motion && c.lin_kind == MotionKind::acceleration) c.a = c.lin_motion->value(tm);
+      if (c.ang_motion && c.ang_kind == MotionKind::acceleration) c.alpha = c.ang_motion->value(tm);
+    }
+  }
+
+  /// After a kick of the step begun at time_ (stage mid or end): the prescribed components and
+  /// the restraints.
+  void enforce_controls(double h, Stage stage) {
+    for (const BodyControl& c : controls_) {
+      if (stage == Stage::end) {
+        // time_ is t + h now: the targets of the step's end
+        const auto [v, w] = targets_end(c, h);
+        enforce(c.body, c, v, w, c.lin_on, c.ang_on);
+      } else {
+        const auto [v, w] = targets(c, h, stage);
+        enforce(c.body, c, v, w, c.lin_on, c.ang_on);
+      }
+    }
+  }
+  std::pair<Vec3, Vec3> targets_end(const BodyControl& c, double h) const {
+    Vec3 v = Vec3::Zero(), w = Vec3::Zero();
+    if (c.lin_motion)
+      v = c.lin_kind == MotionKind::velocity ? c.lin_motion->value(time_) : Vec3(c.v0 + h * c.a);
+    if (c.ang_motion)
+      w = c.ang_kind == MotionKind::velocity ? c.ang_motion->value(time_)
+                                             : Vec3(c.w0 + h * c.alpha);
+    return {v, w};
+  }
+
+  /// Between runs (restrain, prescribe_motion): the constraints at the current time.
+  void enforce_now(std::size_t b) {
+    const BodyControl& c = controls_[static_cast<std::size_t>(control_of_[b])];
+    const auto [v, w] = targets(c, 0.0, Stage::now);
+    enforce(b, c, v, w, prescribed(c.lin_motion, time_), prescribed(c.ang_motion, time_));
+  }
+
+  /// Stage 3 without joints' impulses: the drift over h (pure: the forces are cleared). A body
+  /// with two or three constrained rotation axes turns at its constant mid-step angular velocity
+  /// (exact for rotation about one free axis); one with a single constrained axis makes the free
+  /// drift and its angular velocity is constrained again after it.
+  void drift(double h) {
+    c_drift_q_.resize(controls_.size());
+    c_drift_w_.resize(controls_.size());
+    for (std::size_t k = 0; k < controls_.size(); ++k) {
+      c_drift_q_[k] = bodies_.orientation[controls_[k].body];
+      c_drift_w_[k] = bodies_.omega[controls_[k].body];
+    }
+    clear_forces(bodies_);
+    kick_drift(bodies_, h);
+    for (std::size_t k = 0; k < controls_.size(); ++k) {
+      const BodyControl& c = controls_[k];
+      const std::size_t i = c.body;
+      const auto n = constrained_axes(c, true, 0.0, nullptr, nullptr, &c.ang_on).size();
+      if (n == 0) continue;
+      if (n >= 2) {
+        const Vec3 w = c_drift_w_[k];
+        const double a = w.norm() * h;
+        bodies_.orientation[i] =
+            a > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(a, w.normalized()) * c_drift_q_[k])
+                          .normalized()
+                    : c_drift_q_[k];
+        bodies_.omega[i] = w;
+      } else {
+        const auto [v, w] = targets(c, h, Stage::mid);
+        enforce(i, c, v, w, c.lin_on, c.ang_on);
+      }
+    }
   }
 
   Vec3 point2_of(const SpringLink& l) const {
@@ -895,13 +1201,15 @@ private:
       const SpringKinematics k = spring_kinematics(l, plane);
       const Eigen::Matrix3d K = point_k(l.body1, k.p1) + point_k(l.body2, plane ? k.p1 : k.p2);
       const Vec3 e = detail::spring_direction(p, k);
-      double m = 0.0;
+      double im = 0.0;
       if (e.squaredNorm() > 0.0) {
-        m = 1.0 / e.dot(K * e);
+        im = e.dot(K * e);
       } else {
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, Eigen::EigenvaluesOnly);
-        m = 1.0 / eig.eigenvalues().maxCoeff();
+        im = eig.eigenvalues().maxCoeff();
       }
+      // neither end can move along the spring (restrained or prescribed): no damping mass
+      const double m = im > 0.0 ? 1.0 / im : 0.0;
       spring_masses_[s] = m;
       const SpringResult r = evaluate(p, spring_states_[s], k, time_, h, m);
       spring_results_[s] = r;
@@ -925,7 +1233,12 @@ private:
     const Eigen::Matrix3d R1 = q1.normalized().toRotationMatrix();
     const Vec3 x = R1 * l.frames.x1, z = R1 * l.frames.z1, y = z.cross(x);
     const Eigen::Matrix3d inv = inverse_inertia_of(l.body1) + inverse_inertia_of(l.body2);
-    return Vec3(1.0 / x.dot(inv * x), 1.0 / y.dot(inv * y), 1.0 / z.dot(inv * z));
+    // about an axis neither body can turn (restrained or prescribed): 0, no damping from a ratio
+    const auto J = [&](const Vec3& n) {
+      const double i = n.dot(inv * n);
+      return i > 0.0 ? 1.0 / i : 0.0;
+    };
+    return Vec3(J(x), J(y), J(z));
   }
 
   CriticalStep spring_estimate(std::size_t s, bool bound = false) const {
@@ -947,13 +1260,15 @@ private:
     const SpringKinematics kin = spring_kinematics(l, plane);
     const Eigen::Matrix3d K = point_k(l.body1, kin.p1) + point_k(l.body2, plane ? kin.p1 : kin.p2);
     const Vec3& e = r.direction;
-    double m = 0.0;
+    double im = 0.0;
     if (e.squaredNorm() > 0.0) {
-      m = 1.0 / e.dot(K * e);
+      im = e.dot(K * e);
     } else { // undefined direction (bound only): the stiffest one
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, Eigen::EigenvaluesOnly);
-      m = 1.0 / eig.eigenvalues().maxCoeff();
+      im = eig.eigenvalues().maxCoeff();
     }
+    if (!(im > 0.0)) return c; // neither end can move along it (restrained, prescribed)
+    const double m = 1.0 / im;
     c.omega = std::sqrt(k / m);
     double xi = p.damping_ratio;
     if (p.dashpot)
@@ -1003,7 +1318,7 @@ private:
       const double k = !law.spring ? 0.0
                        : bound     ? detail::largest_slope(*law.spring)
                                    : detail::table_slope(*law.spring, angle);
-      if (k > 0.0) {
+      if (k > 0.0 && J[a] > 0.0) {
         c.omega = std::sqrt(k / J[a]);
         double xi = law.damping_ratio;
         if (law.dashpot)
@@ -1055,8 +1370,7 @@ private:
       joint_drifts_ = it + 1;
       saved_velocity_ = bodies_.velocity;
       saved_omega_ = bodies_.omega;
-      clear_forces(bodies_);
-      kick_drift(bodies_, h); // pure drift: the forces are zero
+      drift(h);
       double worst = 0.0;
       for (std::size_t j = 0; j < nj; ++j) {
         const auto [p1, p2] = joint_points(j);
@@ -1091,16 +1405,17 @@ private:
     std::vector<Eigen::Triplet<double>> trip;
     std::vector<double> diag(3 * nj, 0.0);
     joint_inverse_inertia_.assign(bodies_.size(), Eigen::Matrix3d::Zero());
+    joint_inverse_mass_.assign(bodies_.size(), Eigen::Matrix3d::Zero());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       if (joint_ends_[b].empty()) continue;
-      const Eigen::Matrix3d inv = inverse_world_inertia(bodies_, b);
+      const Eigen::Matrix3d inv = inverse_inertia_of(static_cast<long>(b));
+      const Eigen::Matrix3d im = inverse_mass_of(static_cast<long>(b));
       joint_inverse_inertia_[b] = inv;
-      const double im = bodies_.inv_mass[b];
+      joint_inverse_mass_[b] = im;
       for (const JointEnd& x : joint_ends_[b])
         for (const JointEnd& y : joint_ends_[b]) {
           const Eigen::Matrix3d blk =
-              x.sign * y.sign *
-              (im * Eigen::Matrix3d::Identity() - detail::skew(x.arm) * inv * detail::skew(y.arm));
+              x.sign * y.sign * (im - detail::skew(x.arm) * inv * detail::skew(y.arm));
           for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
               trip.emplace_back(static_cast<int>(3 * x.joint) + r,
@@ -1142,7 +1457,7 @@ private:
     for (std::size_t b = 0; b < bodies_.size(); ++b)
       for (const JointEnd& x : joint_ends_[b]) {
         const Vec3 l = x.sign * Vec3(lambda.segment<3>(static_cast<Eigen::Index>(3 * x.joint)));
-        bodies_.velocity[b] += bodies_.inv_mass[b] * l;
+        bodies_.velocity[b] += joint_inverse_mass_[b] * l;
         bodies_.omega[b] += joint_inverse_inertia_[b] * x.arm.cross(l);
       }
     for (std::size_t j = 0; j < joints_.size(); ++j)
@@ -1168,11 +1483,15 @@ private:
     Vec3 arm;    // joint point - centre [m]
   };
   std::vector<std::vector<JointEnd>> joint_ends_{};
-  std::vector<Eigen::Matrix3d> joint_inverse_inertia_{};
+  std::vector<Eigen::Matrix3d> joint_inverse_inertia_{}, joint_inverse_mass_{};
   std::unique_ptr<Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>> joint_solver_{};
   std::vector<Vec3> saved_position_{}, saved_velocity_{}, saved_omega_{};
   std::vector<Eigen::Quaterniond> saved_orientation_{};
   std::vector<Unspring> unsprings_{};
+  std::vector<BodyControl> controls_{};
+  std::vector<long> control_of_{}; ///< body -> index in controls_, or -1
+  std::vector<Eigen::Quaterniond> c_drift_q_{};
+  std::vector<Vec3> c_drift_w_{};
   VectorTimeFunction<3> gravity_{};
   VectorTimeFunction<3> damping_linear_{}, damping_angular_{};
   bool damped_ = false;

@@ -10,6 +10,7 @@
 /// | `linear`      | v0 + slope (t - t0)                                     |
 /// | `oscillatory` | base + amplitude sin(2 pi (t - t0) / period + phase)    |
 /// | `table`       | piecewise linear in absolute time, end values held      |
+/// | `callable`    | a user's function of time, `std::function<double(double)>` |
 ///
 /// Each function has an activity interval [t_begin, t_end] (closed; by default (-inf, inf)).
 /// `active(t)` tells whether t lies in it; `operator()(t)` is f(t) while active and **0 while
@@ -20,9 +21,16 @@
 /// explicitly (pass t0 = t_begin for a ramp that starts when the function becomes active), and
 /// tables use absolute time.
 ///
-/// A `TimeFunction` is a small value type (a table is shared, not copied; evaluation is a switch),
-/// cheap to copy and to evaluate, and safe to evaluate from several threads at once. A plain
-/// number converts to a constant: `TimeFunction f = 9.81;`.
+/// A `TimeFunction` is a small value type (a table or a callable is shared, not copied; evaluation
+/// is a switch), cheap to copy and to evaluate, and safe to evaluate from several threads at once
+/// (a callable: if the user's function is). A plain number converts to a constant:
+/// `TimeFunction f = 9.81;`.
+///
+/// A `callable` is evaluated where grain evaluates the condition it describes: once or twice per
+/// step, outside the parallel particle and contact loops (gravity, damping, prescribed motion,
+/// wall and obstacle motion, loads, output intervals), never per contact. An exception it throws
+/// propagates out of the run. Set-up checks that need a value (a non-negative damping) evaluate
+/// it at the current time only.
 
 #include <grain/core/error.hpp>
 #include <grain/core/table.hpp>
@@ -32,8 +40,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <numbers>
 #include <string>
 #include <type_traits>
@@ -43,7 +53,7 @@ namespace grain {
 
 class TimeFunction {
 public:
-  enum class Kind : std::uint8_t { constant, linear, oscillatory, table };
+  enum class Kind : std::uint8_t { constant, linear, oscillatory, table, callable };
 
   /// The constant 0, always active.
   TimeFunction() = default;
@@ -111,6 +121,19 @@ public:
     return f;
   }
 
+  /// f(t) = fn(t), a user's function of the time [s] (a lambda, a function pointer, a binding to
+  /// another language). It must return a finite value; grain's checks of the quantity it
+  /// describes apply where it is evaluated.
+  static TimeFunction callable(std::function<double(double)> fn) {
+    if (!fn)
+      throw InputError("TimeFunction::callable: function = empty is invalid; valid: a callable "
+                       "double(double) of the time [s]");
+    TimeFunction f;
+    f.kind_ = Kind::callable;
+    f.fn_ = std::make_shared<const std::function<double(double)>>(std::move(fn));
+    return f;
+  }
+
   /// A copy that is active only for t_begin <= t <= t_end [s]. Either end may be infinite
   /// (-inf for t_begin, +inf for t_end); t_begin <= t_end.
   [[nodiscard]] TimeFunction active(double t_begin, double t_end) const {
@@ -131,15 +154,13 @@ public:
   bool active(double t) const noexcept { return t >= t_begin_ && t <= t_end_; }
 
   /// f(t) while active, 0 while inactive.
-  double operator()(double t) const noexcept { return active(t) ? value(t) : 0.0; }
+  double operator()(double t) const { return active(t) ? value(t) : 0.0; }
   /// The same with a caller-held table cursor (see `Table::operator()(x, hint)`); the hint is
   /// ignored by the other kinds.
-  double operator()(double t, std::size_t& hint) const noexcept {
-    return active(t) ? value(t, hint) : 0.0;
-  }
+  double operator()(double t, std::size_t& hint) const { return active(t) ? value(t, hint) : 0.0; }
 
   /// f(t), ignoring the activity interval.
-  double value(double t) const noexcept {
+  double value(double t) const {
     switch (kind_) {
     case Kind::constant:
       return a_;
@@ -149,11 +170,13 @@ public:
       return a_ + b_ * std::sin(omega_ * (t - t0_) + phase_);
     case Kind::table:
       return (*table_)(t);
+    case Kind::callable:
+      return (*fn_)(t);
     }
     return a_;
   }
   /// f(t) with a caller-held table cursor, ignoring the activity interval.
-  double value(double t, std::size_t& hint) const noexcept {
+  double value(double t, std::size_t& hint) const {
     return kind_ == Kind::table ? (*table_)(t, hint) : value(t);
   }
 
@@ -187,6 +210,9 @@ public:
       s = table_->label() + " (" + std::to_string(table_->size()) + " points, t in [" +
           to_text(table_->x_front()) + ", " + to_text(table_->x_back()) + "])";
       break;
+    case Kind::callable:
+      s = "a function of time";
+      break;
     }
     if (has_interval()) s += ", active in [" + to_text(t_begin_) + ", " + to_text(t_end_) + "]";
     return s;
@@ -202,6 +228,8 @@ public:
       return "oscillatory";
     case Kind::table:
       return "table";
+    case Kind::callable:
+      return "callable";
     }
     return "?";
   }
@@ -217,6 +245,7 @@ private:
   double t_begin_ = -std::numeric_limits<double>::infinity();
   double t_end_ = std::numeric_limits<double>::infinity();
   std::shared_ptr<const Table> table_;
+  std::shared_ptr<const std::function<double(double)>> fn_;
 };
 
 /// A D-vector that may change in time: either one `TimeFunction` per component, or a fixed unit
@@ -258,6 +287,37 @@ public:
     return v;
   }
 
+  /// fn(t), a user's function of the time [s] returning the whole vector: each component is a
+  /// `TimeFunction::callable` that takes its part of fn(t); fn is called once per time at which
+  /// the vector is evaluated (the last value is kept for the other components; thread-safe).
+  static VectorTimeFunction callable(std::function<Vec<D>(double)> fn) {
+    if (!fn)
+      throw InputError("VectorTimeFunction::callable: function = empty is invalid; valid: a "
+                       "callable returning the vector at a time [s]");
+    struct Last {
+      std::function<Vec<D>(double)> fn;
+      std::mutex mutex;
+      bool has = false;
+      double t = 0.0;
+      Vec<D> v = Vec<D>::Zero();
+    };
+    auto last = std::make_shared<Last>();
+    last->fn = std::move(fn);
+    std::array<TimeFunction, D> c;
+    for (int k = 0; k < D; ++k)
+      c[static_cast<std::size_t>(k)] = TimeFunction::callable([last, k](double t) {
+        std::lock_guard<std::mutex> lock(last->mutex);
+        if (!last->has || last->t != t) {
+          last->has = false;
+          last->v = last->fn(t);
+          last->t = t;
+          last->has = true;
+        }
+        return last->v[k];
+      });
+    return VectorTimeFunction(std::move(c));
+  }
+
   /// A copy whose functions are all active only for t_begin <= t <= t_end [s].
   [[nodiscard]] VectorTimeFunction active(double t_begin, double t_end) const {
     VectorTimeFunction v = *this;
@@ -280,7 +340,7 @@ public:
   }
 
   /// The vector at t, each component 0 while its function is inactive.
-  Vec<D> operator()(double t) const noexcept {
+  Vec<D> operator()(double t) const {
     if (along_) return direction_ * f_[0](t);
     Vec<D> v;
     for (int i = 0; i < D; ++i)
@@ -289,7 +349,7 @@ public:
   }
 
   /// The vector at t, ignoring the activity intervals.
-  Vec<D> value(double t) const noexcept {
+  Vec<D> value(double t) const {
     if (along_) return direction_ * f_[0].value(t);
     Vec<D> v;
     for (int i = 0; i < D; ++i)

@@ -11,6 +11,7 @@
 /// | frequency | calls each action |
 /// |---|---|
 /// | `every(interval, actions...)` | at the start of a run (t0), every `interval` [s] of simulated time after it (the k-th output at the first step that reaches t0 + k interval, see Every), and at the end |
+/// | `every(interval(t), actions...)` | as `every`, with an interval that is a `TimeFunction` of time (a table, a callable), evaluated at each step's time t: an output when t reaches the last due time plus interval(t) (see EveryVarying) |
 /// | `every_steps(n, actions...)` | at the start of a run, every n steps after it, and at the end |
 ///
 /// Neither calls its actions twice at one step: not when a run starts where the previous run with
@@ -26,6 +27,7 @@
 
 #include <grain/core/error.hpp>
 #include <grain/core/observer.hpp>
+#include <grain/core/time_function.hpp>
 #include <grain/io/atomic_file.hpp>
 #include <grain/io/csv.hpp>
 #include <grain/io/write_error.hpp>
@@ -310,6 +312,62 @@ private:
 template <class... Actions>
 Every<std::decay_t<Actions>...> every(double interval, Actions&&... actions) {
   grain::detail::require_positive("grain::io::every", "interval", interval);
+  return {interval, {std::forward<Actions>(actions)...}};
+}
+
+/// Calls each action at the start of a run, then at intervals that follow a function of time
+/// (a table, a ramp, a user's callable; Parmec's output interval given as a time series or a
+/// callback), and at the end. The interval is evaluated at the time of each step, t: an output
+/// is due when t reaches the last due time t_k plus interval(t) (less `tolerance` steps), and
+/// the due time then advances by that interval, t_(k+1) = t_k + interval(t) (by whole intervals
+/// when one is shorter than the step). A constant interval gives the due times of `every`. An
+/// interval that is not finite and > 0 when it is evaluated throws InputError naming the time.
+template <class... Actions>
+struct EveryVarying {
+  TimeFunction interval;
+  std::tuple<Actions...> actions;
+  double last_due = 0.0; ///< time of the last due output [s]
+  long last_step = -1;   ///< step of the last call (no second call at the same step)
+  static constexpr double tolerance = 1e-3;
+
+  template <class Sim>
+  void start(const Sim& sim) {
+    std::apply([&](auto&... a) { (detail::start_action(a, sim), ...); }, actions);
+    if (last_step == sim.step_count()) return; // continues a run that ended with a call
+    last_due = sim.time();
+    fire(sim);
+  }
+  template <class Sim>
+  void operator()(const Sim& sim) {
+    const double t = sim.time() + tolerance * sim.time_step();
+    const double dt = interval(sim.time());
+    if (!(std::isfinite(dt) && dt > 0.0))
+      throw InputError("grain::io::every: interval = " + grain::detail::to_text(dt) +
+                       " s at t = " + grain::detail::to_text(sim.time()) +
+                       " s is invalid; valid range: (0, inf) s");
+    if (t < last_due + dt) return;
+    last_due += dt * std::max(1.0, std::floor((t - last_due) / dt));
+    fire(sim);
+  }
+  template <class Sim>
+  void finish(const Sim& sim) {
+    if (last_step != sim.step_count()) fire(sim);
+    std::apply([&](auto&... a) { (detail::finish_action(a, sim), ...); }, actions);
+  }
+
+private:
+  template <class Sim>
+  void fire(const Sim& sim) {
+    grain::detail::check_state(sim);
+    last_step = sim.step_count();
+    std::apply([&](auto&... a) { (a(sim), ...); }, actions);
+  }
+};
+
+/// every(interval(t), actions...): output actions at an interval that is a function of time
+/// [s] (see EveryVarying); a plain number picks the fixed-interval `every` above.
+template <class... Actions>
+EveryVarying<std::decay_t<Actions>...> every(const TimeFunction& interval, Actions&&... actions) {
   return {interval, {std::forward<Actions>(actions)...}};
 }
 

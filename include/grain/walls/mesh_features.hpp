@@ -417,20 +417,36 @@ inline void MeshFeatures::build_faces(const TriangleMesh& mesh, const std::strin
   for (std::size_t f = 0; f < nf; ++f) {
     Face& F = faces_[f];
     F.v = T[f];
-    require(F.v[0] != F.v[1] && F.v[1] != F.v[2] && F.v[2] != F.v[0], object,
-            ("triangle " + std::to_string(f) + " vertex indices").c_str(),
-            std::to_string(F.v[0]) + ", " + std::to_string(F.v[1]) + ", " + std::to_string(F.v[2]),
-            "three different vertices");
+    // the messages are built with += only when a check fails (GCC 12 reports a false -Wrestrict
+    // for "literal" + std::string&& here)
+    if (F.v[0] == F.v[1] || F.v[1] == F.v[2] || F.v[2] == F.v[0]) {
+      std::string what = "triangle ", value = std::to_string(F.v[0]);
+      what += std::to_string(f);
+      what += " vertex indices";
+      value += ", ";
+      value += std::to_string(F.v[1]);
+      value += ", ";
+      value += std::to_string(F.v[2]);
+      require(false, object, what.c_str(), value, "three different vertices");
+    }
     const Vec3 &a = X[F.v[0]], &b = X[F.v[1]], &c = X[F.v[2]];
     const Vec3 n = (b - a).cross(c - a);
     const double longest =
         std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-    require(n.norm() > 1e-10 * longest, object, ("triangle " + std::to_string(f) + " area").c_str(),
-            0.5 * n.norm(),
-            "(" + to_text(0.5e-10 * longest) +
-                ", inf) m^2 (above 1e-10 times half its longest edge squared: corners " +
-                detail::mesh_point_text(a) + ", " + detail::mesh_point_text(b) + ", " +
-                detail::mesh_point_text(c) + " are collinear)");
+    if (!(n.norm() > 1e-10 * longest)) {
+      std::string what = "triangle ", range = "(";
+      what += std::to_string(f);
+      what += " area";
+      range += to_text(0.5e-10 * longest);
+      range += ", inf) m^2 (above 1e-10 times half its longest edge squared: corners ";
+      range += detail::mesh_point_text(a);
+      range += ", ";
+      range += detail::mesh_point_text(b);
+      range += ", ";
+      range += detail::mesh_point_text(c);
+      range += " are collinear)";
+      require(false, object, what.c_str(), 0.5 * n.norm(), range);
+    }
     const auto& P = vertices_;
     F.normal = (P[F.v[1]].p - P[F.v[0]].p).cross(P[F.v[2]].p - P[F.v[0]].p).normalized();
     for (int k = 0; k < 3; ++k) {

@@ -23,7 +23,11 @@
 ///     double) until the contact ends, as in DEMLab. A measured v below `min_impact_velocity`
 ///     is replaced by `reference_velocity`, so a contact that forms slowly never gets a
 ///     vanishing stiffness (DEMLab gives it K = 0).
-/// - eta [N s/m]: `damping` if given (>= 0); otherwise from the pair's restitution e,
+/// - eta [N s/m]: `damping` if given (>= 0); otherwise `damping_ratio` zeta if given (>= 0),
+///   eta = 2 zeta sqrt(m* K) with each contact's effective mass m* (the third seed's GRANULAR
+///   damper: zeta = 1 is critical damping, zeta > 1 overdamped; an isolated contact rebounds
+///   with e = exp(-pi zeta / sqrt(1 - zeta^2)) for zeta < 1 and not at all for zeta >= 1,
+///   whatever the masses); otherwise from the pair's restitution e,
 ///   eta = 2 zeta sqrt(m* K), zeta = -ln e / sqrt(ln^2 e + pi^2), which gives exactly e for an
 ///   isolated contact without force clamping. It is evaluated with the contact's current K
 ///   (DEMLab keeps the first value of a contact object even after K changes).
@@ -65,6 +69,9 @@ struct BasicLinearSpringDashpot {
     /// per-contact velocity only: measured impact velocities below this use
     /// `reference_velocity` [m/s]
     double min_impact_velocity = 0.01;
+    /// zeta [-]: eta = 2 zeta sqrt(m* K) when `damping` is not given; < 0 = from the restitution
+    /// coefficient
+    double damping_ratio = -1.0;
   };
   /// Empty (zero bytes) unless the impact velocity is per contact.
   template <int D>
@@ -79,6 +86,8 @@ struct BasicLinearSpringDashpot {
     }
     detail::require(std::isfinite(p.damping), object, "damping", p.damping,
                     "[0, inf) N s/m, or < 0 for damping from restitution");
+    detail::require(std::isfinite(p.damping_ratio), object, "damping_ratio", p.damping_ratio,
+                    "[0, inf), or < 0 for damping from restitution");
     detail::require(hertz_equivalent::valid(p.equivalence), object, "equivalence",
                     static_cast<int>(p.equivalence),
                     "Equivalence::energy, Equivalence::overlap or Equivalence::time");
@@ -97,7 +106,8 @@ struct BasicLinearSpringDashpot {
   /// eta [N s/m].
   static double damping(const PairProperties& pair, const Params& p, double k, double m_eff) {
     if (p.damping >= 0.0) return p.damping;
-    return 2.0 * pair.damping_ratio() * std::sqrt(m_eff * k);
+    return 2.0 * (p.damping_ratio >= 0.0 ? p.damping_ratio : pair.damping_ratio()) *
+           std::sqrt(m_eff * k);
   }
 
   template <int D>

@@ -21,13 +21,15 @@
 ///   for e_t = 0, where m*/kappa is the effective mass of the tangential motion of a sticking
 ///   contact, kappa = 1 + m R^2/I: 7/2 for spheres (Deen's 2 m*/7), 3 for solid disks; set
 ///   `kappa` = 3.5 for 2D disks with sphere mass;
+///   else `damping_factor` f if >= 0: eta_t = f eta_n (the third seed's GRANULAR law takes
+///   f = kskn = k_t / k_n, both coefficients scaled by the same ratio);
 ///   else the normal damping scaled by the stiffnesses, eta_t = eta_n sqrt(k_t / k_n) (LIGGGHTS'
 ///   convention; as the sticking contact moves with m*/kappa, its damping ratio is sqrt(kappa)
 ///   times the normal one).
 /// - mu_s, mu_d: the pair's static and dynamic friction coefficients.
 ///
 /// Defaults: stiffness 0 (derived), stiffness_ratio 0 (Mindlin), damping -1 (normal ratio),
-/// restitution -1 (not used), kappa 0 (by dimension).
+/// restitution -1 (not used), kappa 0 (by dimension), damping_factor -1 (not used).
 
 #include <cmath>
 #include <grain/models/tangent/stick_slip.hpp>
@@ -44,6 +46,7 @@ struct SpringDashpotSlider {
     double damping = -1.0;        ///< eta_t [N s/m]; < 0 = from restitution or normal ratio
     double restitution = -1.0;    ///< tangential restitution e_t in [0, 1]; < 0 = not used
     double kappa = 0.0;           ///< 1 + m R^2/I; 0 = 7/2 (3D) or 3 (2D)
+    double damping_factor = -1.0; ///< eta_t / eta_n; < 0 = not used
   };
   template <int D>
   using History = detail::SpringHistory<D>;
@@ -60,6 +63,8 @@ struct SpringDashpotSlider {
                            "[0, inf), or < 0 for restitution or the normal damping ratio");
     detail::validate_restitution(m, p.restitution);
     detail::validate_kappa(m, p.kappa);
+    grain::detail::require(std::isfinite(p.damping_factor), m, "damping_factor", p.damping_factor,
+                           "[0, inf), or < 0 when not used");
   }
 
   template <int D>
@@ -78,6 +83,8 @@ struct SpringDashpotSlider {
       eta = p.damping;
     else if (p.restitution >= 0.0)
       eta = detail::restitution_damping(p.restitution, g.m_eff, kt, detail::kappa<D>(p.kappa));
+    else if (p.damping_factor >= 0.0)
+      eta = p.damping_factor * n.damping;
     else
       eta = detail::normal_ratio_damping(n, kt);
     return {kt, eta};
