@@ -1007,6 +1007,9 @@ def DEM(duration, step, interval=None, prefix=None, adaptive=None):
     continue from where the last one stopped. Returns the wall-clock time taken [s]."""
     d = _positive("DEM", "duration", duration)
     h = _positive("DEM", "step", step)
+    if not h <= d:
+        raise ValueError("DEM: argument 'step' = %r is invalid; valid range: (0, duration = %r] s"
+                         % (step, duration))
     if isinstance(interval, (tuple, list)):
         if len(interval) != 2:
             raise ValueError("DEM: argument 'interval' = %r is invalid; valid: a number or a "
