@@ -363,7 +363,7 @@ def read_walls(particles_path):
 # ------------------------------------------------------------------ 2D pictures of disks
 # What a 2D picture shows of a particle file: centres (N x 3), radii, values to colour by and
 # their label, time [s] (or None) and walls (VtkData or None).
-Disks = collections.namedtuple("Disks", "centres radii values label time walls")
+Disks = collections.namedtuple("Disks", "centres radii values label time walls data")
 
 
 def read_disks(path, field):
@@ -373,12 +373,42 @@ def read_disks(path, field):
         fail(f"{path} has no radius field")
     label, values = field_values(data.fields, field)
     radii = numpy.asarray(data.fields["radius"], dtype=float).reshape(-1)
-    return Disks(data.points, radii, values, label, data.time, read_walls(path))
+    return Disks(data.points, radii, values, label, data.time, read_walls(path), data)
 
 
-def draw_disks(ax, disks, value_range):
+class DiskStyle:
+    """What a 2D picture adds to the coloured disks (animate's options):
+    ids          label each disk with its id
+    markers      a radius drawn at each disk's orientation angle (its turning)
+    arrows       a vector field drawn as arrows at the centres ("velocity", "force")
+    arrow_scale  length [m] of an arrow per unit of the field (None: the longest arrow of the
+                 picture is 1.5 times the largest radius)
+    window       (xmin, xmax, ymin, ymax) [m] of the view (None: fitted to disks and walls)
+    wall_field   colour the walls by this field of the walls' file (e.g. "temperature") on the
+                 disks' colour scale, where the file has it"""
+
+    def __init__(self, ids=False, markers=False, arrows=None, arrow_scale=None, window=None,
+                 wall_field=None):
+        self.ids, self.markers, self.arrows = ids, markers, arrows
+        self.arrow_scale, self.window, self.wall_field = arrow_scale, window, wall_field
+
+
+def arrow_vectors(disks, name):
+    """The in-plane components (N x 2) of the vector field `name` of a Disks."""
+    if name not in disks.data.fields:
+        fail(f"no field '{name}' for arrows; fields: {', '.join(sorted(disks.data.fields))}")
+    v = numpy.asarray(disks.data.fields[name], dtype=float)
+    if v.ndim != 2 or v.shape[1] < 2:
+        fail(f"field '{name}' is not a vector field")
+    return v[:, :2]
+
+
+def draw_disks(ax, disks, value_range, style=None):
     """Draws Disks on `ax`, coloured on value_range (LO, HI) if given, the walls as lines, the
-    axes fitted to both; returns the collection of the disks (for a colour bar)."""
+    axes fitted to both (or to style.window); returns the collection of the disks (for a
+    colour bar). `style` (a DiskStyle) adds ids, orientation markers, arrows and walls coloured
+    by a field."""
+    style = style or DiskStyle()
     centres, radii = disks.centres[:, :2], disks.radii
     coll = PatchCollection([Circle(p, r) for p, r in zip(centres, radii)], cmap="inferno",
                            linewidths=0)
@@ -389,19 +419,55 @@ def draw_disks(ax, disks, value_range):
     corners = [centres - radii[:, None], centres + radii[:, None]]
     if disks.walls is not None:
         points = disks.walls.points[:, :2]
-        ax.add_collection(LineCollection(
-            [points[c] for c in disks.walls.lines + [p + p[:1] for p in disks.walls.polygons]],
-            colors="0.3", linewidths=1.5))
+        cells = disks.walls.lines + [p + p[:1] for p in disks.walls.polygons]
+        lines = LineCollection([points[c] for c in cells], colors="0.3", linewidths=1.5)
+        values = disks.walls.fields.get(style.wall_field) if style.wall_field else None
+        if values is not None and len(values) == len(cells):
+            # the walls on the disks' colour scale (cell data: lines, then polygons)
+            lines = LineCollection([points[c] for c in cells], cmap="inferno", linewidths=3.0)
+            lines.set_array(numpy.asarray(values, dtype=float))
+            lines.set_clim(*(value_range or coll.get_clim()))
+        ax.add_collection(lines)
         corners.append(points)
-    corners = numpy.concatenate(corners)
-    if len(corners):
-        lo, hi = corners.min(axis=0), corners.max(axis=0)
-        pad = 0.03 * max(float((hi - lo).max()), 1e-12)
-        ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    if style.markers and "orientation" in disks.data.fields:
+        theta = numpy.asarray(disks.data.fields["orientation"], dtype=float).reshape(-1)
+        if len(theta) == len(radii):
+            ends = centres + radii[:, None] * numpy.stack([numpy.cos(theta),
+                                                             numpy.sin(theta)], axis=1)
+            ax.add_collection(LineCollection(list(zip(centres, ends)), colors="0.85",
+                                             linewidths=1.2))
+    if style.arrows:
+        v = arrow_vectors(disks, style.arrows)
+        scale = style.arrow_scale
+        if scale is None:
+            longest = float(numpy.sqrt((v * v).sum(axis=1)).max()) if len(v) else 0.0
+            scale = 1.5 * float(radii.max()) / longest if longest > 0 else 0.0
+        if scale > 0:
+            ax.quiver(centres[:, 0], centres[:, 1], v[:, 0] * scale, v[:, 1] * scale,
+                      angles="xy", scale_units="xy", scale=1.0, color="tab:cyan", width=0.004)
+    if style.window:
+        ax.set_xlim(style.window[0], style.window[1])
+        ax.set_ylim(style.window[2], style.window[3])
+    else:
+        corners = numpy.concatenate(corners)
+        if len(corners):
+            lo, hi = corners.min(axis=0), corners.max(axis=0)
+            pad = 0.03 * max(float((hi - lo).max()), 1e-12)
+            ax.set_xlim(lo[0] - pad, hi[0] + pad)
+            ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
+    if style.ids and "id" in disks.data.fields:
+        # labels sized to the disks as drawn: points per metre of the view
+        ax.apply_aspect()
+        x0, x1 = ax.get_xlim()
+        per_metre = ax.get_window_extent().width / abs(x1 - x0) * 72.0 / ax.figure.dpi
+        for (x, y), i, r in zip(centres, disks.data.fields["id"], radii):
+            size = 0.8 * r * per_metre
+            if size >= 3.0:  # too small to read otherwise
+                ax.text(x, y, "%d" % int(i), ha="center", va="center", color="tab:green",
+                        fontsize=min(size, 12.0), clip_on=True)
     return coll
 
 
@@ -423,33 +489,55 @@ def plot_disks(args):
     print(out)
 
 
-def disks_animation(prefix, field=None):
+def disks_animation(prefix, field=None, value_range=None, style=None, heading=None):
     """The animation of `animate`: (figure, draw, number of frames), where draw(k) draws frame k
-    of the series PREFIX_particles_NNNNNN.vtk titled with its time, every frame on the colour
-    scale of all of them."""
+    of the series PREFIX_particles_NNNNNN.vtk titled with `heading` (default: the prefix's
+    name) and its time, every frame on the colour scale value_range (default: the range of all
+    frames). `style` is a DiskStyle; its arrows get one scale for all frames."""
     files = sorted(glob.glob(glob.escape(prefix) + "_particles_[0-9][0-9][0-9][0-9][0-9][0-9].vtk"))
     if not files:
         fail(f"no files {prefix}_particles_NNNNNN.vtk")
     frames = [read_disks(path, field) for path in files]
-    values = numpy.concatenate([f.values for f in frames])
-    lo, hi = (float(values.min()), float(values.max())) if len(values) else (0.0, 1.0)
+    if value_range:
+        lo, hi = value_range
+    else:
+        values = [f.values for f in frames]
+        if style and style.wall_field:  # walls on the same scale: their values count too
+            values += [numpy.asarray(f.walls.fields[style.wall_field], dtype=float)
+                       for f in frames if f.walls is not None and style.wall_field in
+                       f.walls.fields]
+        values = numpy.concatenate(values)
+        lo, hi = (float(values.min()), float(values.max())) if len(values) else (0.0, 1.0)
     if lo == hi:
         hi = lo + 1.0
+    style = style or DiskStyle()
+    if style.arrows and style.arrow_scale is None:
+        longest = max((float(numpy.sqrt((v * v).sum(axis=1)).max()) for v in
+                       (arrow_vectors(f, style.arrows) for f in frames) if len(v)), default=0.0)
+        r_max = max((float(f.radii.max()) for f in frames if len(f.radii)), default=0.0)
+        style.arrow_scale = 1.5 * r_max / longest if longest > 0 else 0.0
     times = time_texts([f.time for f in frames])
+    name = heading or os.path.basename(prefix)
     fig, ax = plt.subplots(figsize=(6.5, 6))
-    fig.colorbar(draw_disks(ax, frames[0], (lo, hi)), ax=ax, label=frames[0].label)
+    fig.colorbar(draw_disks(ax, frames[0], (lo, hi), style), ax=ax, label=frames[0].label)
 
     def draw(k):
         ax.clear()
-        draw_disks(ax, frames[k], (lo, hi))
-        ax.set_title(title(os.path.basename(prefix), times[k]))
+        draw_disks(ax, frames[k], (lo, hi), style)
+        ax.set_title(title(name, times[k]))
         return []
 
     return fig, draw, len(frames)
 
 
 def plot_animation(args):
-    fig, draw, frames = disks_animation(args.prefix, args.field)
+    style = DiskStyle(ids=args.ids, markers=args.markers, arrows=args.arrows,
+                      window=args.window, wall_field=args.wall_field)
+    if args.window and not (args.window[0] < args.window[1] and args.window[2] < args.window[3]):
+        fail(f"--window {args.window}: XMIN < XMAX and YMIN < YMAX")
+    if args.range and not args.range[0] < args.range[1]:
+        fail(f"--range {args.range}: LO < HI")
+    fig, draw, frames = disks_animation(args.prefix, args.field, args.range, style, args.title)
     anim = animation.FuncAnimation(fig, draw, frames=frames, blit=False)
     out = args.output or args.prefix + ".gif"
     anim.save(out, writer=animation.PillowWriter(fps=args.fps))
@@ -805,6 +893,18 @@ def main():
     a.add_argument("-f", "--field")
     a.add_argument("-o", "--output")
     a.add_argument("--fps", type=int, default=10)
+    a.add_argument("--range", nargs=2, type=float, metavar=("LO", "HI"),
+                   help="colour scale (default: the range of all frames)")
+    a.add_argument("--title", help="title of the frames (the time is added)")
+    a.add_argument("--window", nargs=4, type=float, metavar=("XMIN", "XMAX", "YMIN", "YMAX"),
+                   help="the view [m] (default: fitted to the disks and walls)")
+    a.add_argument("--ids", action="store_true", help="label the disks with their ids")
+    a.add_argument("--markers", action="store_true",
+                   help="draw each disk's orientation (a radius at its angle)")
+    a.add_argument("--arrows", metavar="FIELD",
+                   help="arrows of a vector field at the centres (velocity, force)")
+    a.add_argument("--wall-field", metavar="FIELD",
+                   help="colour the walls by a field of the walls' files (temperature)")
     s = sub.add_parser("spheres", help="a 3D picture of the spheres of a VTK file")
     s.add_argument("file")
     s.add_argument("-f", "--field")

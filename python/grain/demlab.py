@@ -1244,14 +1244,18 @@ def write_graphs(project, results, out):
     return written
 
 
-# DEMLab's animation results -> the field of grain's particle VTK files that grain-plot colours
-# the disks by (None: plain disks); a vector is drawn by its magnitude
+# DEMLab's animation results -> (the field of grain's particle VTK files that grain-plot colours
+# the disks by or None for plain disks, the vector field drawn as arrows or None); a vector
+# field colours by its magnitude
 ANIMATION_FIELDS = {
-    "radius": "radius", "mass": "mass", "motion": None, "orientation": "orientation",
-    "force_vector": "force", "force_modulus": "force", "force_x": "force", "force_y": "force",
-    "torque": "torque", "velocity_vector": "velocity", "velocity_modulus": "velocity",
-    "velocity_x": "velocity", "velocity_y": "velocity", "velocity_rot": "omega",
-    "heat_rate": "heat_rate", "temperature": "temperature"}
+    "radius": ("radius", None), "mass": ("mass", None), "motion": (None, None),
+    "orientation": ("orientation", None), "force_vector": ("force", "force"),
+    "force_modulus": ("force", None), "force_x": ("force:x", None), "force_y": ("force:y", None),
+    "torque": ("torque", None), "velocity_vector": ("velocity", "velocity"),
+    "velocity_modulus": ("velocity", None), "velocity_x": ("velocity:x", None),
+    "velocity_y": ("velocity:y", None), "velocity_rot": ("omega:z", None),
+    "acceleration_vector": (None, "force"), "heat_rate": ("heat_rate", None),
+    "temperature": ("temperature", None)}
 
 
 def _plot_script():
@@ -1272,21 +1276,36 @@ def write_animations(project, out):
     script = _plot_script()
     for k, anim in enumerate(project.json.get("Animation", [])):
         result = anim["result"]
-        field = ANIMATION_FIELDS.get(result, None)
+        field, arrows = ANIMATION_FIELDS.get(result, (None, None))
         if result not in ANIMATION_FIELDS:
-            print("grain-demlab: note: animation result %r is not in grain's VTK files (no "
-                  "coordinate or acceleration fields): the disks are drawn plain" % result)
+            print("grain-demlab: note: animation result %r: grain's VTK files have no "
+                  "coordinate or acceleration fields; the disks are drawn plain" % result)
+        if result == "acceleration_vector":
+            print("grain-demlab: note: animation result acceleration_vector: drawn as force "
+                  "arrows (the acceleration's direction; grain's VTK files hold the force)")
         if field in ("temperature", "heat_rate") and not project.thermal:
             field = None
-        title = anim.get("title", "Animation_%d" % (k + 1)).replace("/", "_")
-        gif = os.path.join(out, title + ".gif")
+        title = anim.get("title", "Animation_%d" % (k + 1))
+        gif = os.path.join(out, title.replace("/", "_") + ".gif")
         if script is None:
             print("grain-demlab: note: grain-plot was not found: no animation %s" % gif)
             continue
         cmd = [sys.executable, script, "animate", os.path.join(out, "vtk", project.name),
-               "-o", gif]
+               "-o", gif, "--title", title]
         if field:
             cmd += ["-f", field]
+        if arrows:
+            cmd += ["--arrows", arrows]
+        if result == "motion":
+            cmd += ["--markers"]  # DEMLab's motion: disks with their orientation
+        if field == "temperature":
+            cmd += ["--wall-field", "temperature"]
+        if anim.get("particle_ids"):
+            cmd += ["--ids"]
+        if "bounding_box" in anim:
+            cmd += ["--window"] + ["%.17g" % v for v in anim["bounding_box"]]
+        if "colorbar_range" in anim:
+            cmd += ["--range"] + ["%.17g" % v for v in anim["colorbar_range"]]
         r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         if r.returncode != 0:
             print("grain-demlab: note: the animation %s was not written: %s"

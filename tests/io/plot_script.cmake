@@ -33,8 +33,9 @@ set(runs
     "disks|${INPUT_DIR}/disks_particles_000000.vtk|-f|velocity|-o|${OUTPUT_DIR}/disks.png"
     "disks|${INPUT_DIR}/disks_binary_particles_000000.vtk|-f|velocity|-o|${OUTPUT_DIR}/disks_binary.png"
     "animate|${INPUT_DIR}/disks|-f|omega|-o|${OUTPUT_DIR}/disks.gif"
+    "animate|${INPUT_DIR}/disks|-f|velocity:x|--range|-1|1|--title|options|--window|-0.08|0.06|-0.06|0.1|--ids|--markers|--arrows|velocity|--wall-field|temperature|-o|${OUTPUT_DIR}/disks_options.gif"
     "lines|${OUTPUT_DIR}/history.csv|${OUTPUT_DIR}/history2.csv|-y|mean_temperature|--label|O'Brien|--label|pipe|--title|two runs|-o|${OUTPUT_DIR}/lines.png")
-set(outputs history.png xy.png disks.png disks_binary.png disks.gif lines.png)
+set(outputs history.png xy.png disks.png disks_binary.png disks.gif disks_options.gif lines.png)
 foreach(run IN LISTS runs)
   string(REPLACE "|" ";" args "${run}")
   execute_process(COMMAND "${PYTHON}" "${SCRIPT}" ${args} RESULT_VARIABLE rc)
@@ -42,6 +43,12 @@ foreach(run IN LISTS runs)
     message(FATAL_ERROR "plot_script: grain_plot.py ${args} failed (${rc})")
   endif()
 endforeach()
+# a view window whose limits are not in order is refused with a message
+execute_process(COMMAND "${PYTHON}" "${SCRIPT}" animate "${INPUT_DIR}/disks" --window 1 0 0 1
+                        -o "${OUTPUT_DIR}/bad.gif" RESULT_VARIABLE rc ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "XMIN < XMAX")
+  message(FATAL_ERROR "plot_script: animate --window 1 0 0 1 was not refused (${rc}: ${err})")
+endif()
 foreach(out IN LISTS outputs)
   set(path "${OUTPUT_DIR}/${out}")
   if(NOT EXISTS "${path}")
