@@ -33,6 +33,7 @@ max_len() {
     checkpoint_fuzz) echo 16384 ;;
     state_csv_fuzz | state_vtk_fuzz) echo 4096 ;;
     mesh_file_fuzz) echo 4096 ;; # a binary STL has 84 + 50 n bytes, a cube in ASCII about 2000
+    demlab_runfile_fuzz) echo 4096 ;; # the run files of DEMLab's small projects: 600 to 3500
     *) echo 1024 ;;
   esac
 }

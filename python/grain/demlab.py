@@ -235,8 +235,7 @@ class _Checker:
             n = {"vector": 2, "box": 4, "range": 2, "interval": 2}.get(kind)
             if not isinstance(v, list) or (n is not None and len(v) != n):
                 self.fail(key, "expected a list of %s numbers, got %r" % (n or "several", v))
-            xs = [x if isinstance(x, float) and math.isinf(x) else self.number(key, x)
-                  for x in v]
+            xs = [self.number(key, x) for x in v]
             if kind == "interval" and not xs[0] <= xs[1]:
                 self.fail(key, "interval %r: the start must not be after the end" % (v,))
             if kind == "range" and not xs[0] < xs[1]:
@@ -248,7 +247,8 @@ class _Checker:
         if kind == "ids":
             ids = _as_list(v)
             for x in ids:
-                if isinstance(x, bool) or not isinstance(x, (int, float)) or x != int(x) or x < 1:
+                if isinstance(x, bool) or not isinstance(x, (int, float)) or \
+                        not math.isfinite(x) or x != int(x) or x < 1:
                     self.fail(key, "%r is not a particle or wall id (a whole number >= 1)" % (x,))
             return [int(x) for x in ids]
         if kind == "names":
@@ -445,7 +445,8 @@ class Project:
             raise ProjectError("%s: the model has no particles" % mp_file)
         ids = sorted(self.parts.particles)
         if ids != list(range(1, len(ids) + 1)):
-            missing = sorted(set(range(1, ids[-1] + 1)) - set(ids))
+            have = set(ids)
+            missing = [i for i in range(1, min(ids[-1], len(ids) + 10) + 1) if i not in have]
             raise ProjectError("%s: particle ids must be 1..N without gaps (DEMLab's rule); "
                                "missing: %s" % (mp_file, missing[:10]))
         self.final_time = self.json["Solver"]["final_time"]
@@ -575,11 +576,12 @@ class Project:
         if "interval" in v:
             r["interval"] = c.value(where + ".interval", v["interval"], "interval")
         if shape == "rectangle":  # a missing limit is open (DEMLab's default)
-            v = dict(v)
-            v.setdefault("limit_min", [-INF, -INF])
-            v.setdefault("limit_max", [INF, INF])
-        need = {"rectangle": ("limit_min", "limit_max"), "circle": ("center", "radius"),
+            r["limit_min"], r["limit_max"] = [-INF, -INF], [INF, INF]
+        need = {"rectangle": (), "circle": ("center", "radius"),
                 "polygon": ("points_x", "points_y")}[shape]
+        for k in ("limit_min", "limit_max") if shape == "rectangle" else ():
+            if k in v:
+                r[k] = c.value(where + "." + k, v[k], REGION_KEYS[k])
         for k in need:
             if k not in v:
                 c.fail(where + "." + k, "required for shape %r" % shape)
@@ -1075,6 +1077,11 @@ class Project:
         for column in self.columns():
             lines.append("record " + column)
         lines.append("vtk %d" % (1 if d.get("Animation") else 0))
+        pr = d.get("Print")
+        if pr and pr.get("printed_results"):  # DEMLab prints nothing without a list
+            res = pr["printed_results"]
+            lines.append("print %d %d %s" % (1 if pr.get("single_file") else 0, len(res),
+                                             " ".join(res)))
         return "\n".join(lines) + "\n"
 
     def columns(self):

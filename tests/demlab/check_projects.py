@@ -174,6 +174,59 @@ elif case == "pack1_regular_400":
     check("the mean temperature rises at every output", all(b >= a for a, b in
                                                              zip(tavg, tavg[1:])),
           "%.4f K -> %.4f K" % (tavg[0], tavg[-1]))
+elif case == "print":
+    # DEMLab's Print: one .pos file per output, or all in one; collision_binary with 4 outputs
+    import shutil
+    for single in (False, True):
+        folder = "mechanical/print_%s" % ("single" if single else "files")
+        shutil.rmtree(os.path.join(root, folder), ignore_errors=True)
+        shutil.copytree(os.path.join(root, "mechanical/collision_binary"),
+                        os.path.join(root, folder))
+        path = os.path.join(root, folder, "ProjectParameters.json")
+        with open(path) as f:
+            d = json.load(f)
+        d["Output"]["number_output"] = 4
+        d["Print"] = {"single_file": single, "printed_results": [
+            "position", "velocity", "acceleration", "temperature"]}
+        with open(path, "w") as f:
+            json.dump(d, f)
+        out = run(folder)
+        blocks = []  # (step, {section: {id: values}})
+        names = ["colliding_balls.pos"] if single else [
+            "colliding_balls_%d.pos" % k for k in (0, 50000, 100000, 150000, 200000)]
+        for name in names:
+            with open(os.path.join(out, name)) as f:
+                section = None
+                for line in f:
+                    w = line.split()
+                    if not w or w[0].startswith("---"):
+                        continue
+                    if w[0] == "%STEP":
+                        blocks.append((int(w[1]), {}))
+                    elif w[0].startswith("%"):
+                        section = w[0]
+                        blocks[-1][1][section] = {}
+                        if len(w) > 1:
+                            blocks[-1][1][section] = float(w[1])
+                    else:
+                        blocks[-1][1][section][int(w[0])] = [float(x) for x in w[1:]]
+        label = "single file" if single else "one file per output"
+        check("%s: outputs at steps 0, 50000, ..., 200000" % label,
+              [b[0] for b in blocks] == [0, 50000, 100000, 150000, 200000],
+              str([b[0] for b in blocks]))
+        first, last = blocks[0][1], blocks[-1][1]
+        check("%s: at t = 0 the disks are at -2 and 2 m, at 2 and -2 m/s, not accelerated"
+              % label,
+              first["%PARTICLE_COORDINATE_ORIENTATION"][1][0] == -2.0 and
+              first["%PARTICLE_COORDINATE_ORIENTATION"][2][0] == 2.0 and
+              first["%PARTICLE_VELOCITY"][1][0] == 2.0 and
+              first["%PARTICLE_ACCELERATION"][1] == [0.0, 0.0, 0.0], str(first)[:300])
+        v_after = -2 * clamped_restitution(0.7)
+        check("%s: the last velocity is -e_c v (0.3 %%)" % label,
+              abs(last["%PARTICLE_VELOCITY"][1][0] / v_after - 1) < 3e-3,
+              str(last["%PARTICLE_VELOCITY"]))
+        check("%s: no temperature block in a mechanical analysis" % label,
+              "%PARTICLE_TEMPERATURE" not in last, str(list(last)))
 else:
     print("unknown case %r" % case)
     sys.exit(2)

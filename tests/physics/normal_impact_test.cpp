@@ -508,6 +508,48 @@ TEST_CASE("Walton-Braun, variable unloading: residual overlap from the actual ma
   MESSAGE("relative errors at t_c/2000:" << errors.summary());
 }
 
+TEST_CASE("Walton-Braun, given unloading stiffness: e = sqrt(K_L/K_U), whatever the pair's e") {
+  using M = normal::WaltonBraun;
+  Errors errors;
+  const double kl = 1e5, v = 1.0, e_pair = 0.3; // the pair's e is not used
+  for (bool wall : {true, false})
+    for (double ku : {1.2e5, 4e5, 2e6}) {
+      CAPTURE(wall);
+      CAPTURE(ku);
+      const double e = std::sqrt(kl / ku), dmax = v * std::sqrt(m_star / kl);
+      const double tc = 0.5 * pi * std::sqrt(m_star / kl) * (1 + e);
+      const auto r = impact<Sphere, M>(
+          {.stiffness = kl, .unloading = normal::Unloading::given, .unloading_stiffness = ku},
+          e_pair, wall, v, tc / 2000);
+      CHECK_REL(errors, "e", r.restitution, e, class_b);
+      CHECK_REL(errors, "t_c (force)", r.force_time, tc, class_b);
+      CHECK_REL(errors, "delta_res = delta_max (1 - K_L/K_U)", r.residual, dmax * (1 - kl / ku),
+                class_b);
+    }
+  // a K_U below K_L is taken as K_L: an elastic contact, e = 1, no residual overlap
+  const double tc = pi * std::sqrt(m_star / kl);
+  const auto r = impact<Sphere, M>(
+      {.stiffness = kl, .unloading = normal::Unloading::given, .unloading_stiffness = 0.5 * kl},
+      e_pair, true, v, tc / 2000);
+  CHECK_REL(errors, "e (K_U < K_L)", r.restitution, 1.0, class_b);
+  // the time equivalence with a given K_U: the contact lasts the undamped Hertz time
+  {
+    namespace he = normal::hertz_equivalent;
+    const auto pair = pair_of(e_pair);
+    const double th = he::hertz_contact_time(pair, r_eff(true), m_star, v);
+    const typename M::Params p{.equivalence = normal::Equivalence::time,
+                               .unloading = normal::Unloading::given,
+                               .unloading_stiffness = 4e6};
+    const double k = M::loading_stiffness(pair, p, r_eff(true), m_star, v);
+    const double twb = 0.5 * pi * std::sqrt(m_star / k) * (1 + std::sqrt(k / 4e6));
+    CHECK_REL(errors, "Walton-Braun duration = Hertz duration (time, given K_U)", twb, th, 1e-12);
+  }
+  // Unloading::given needs a stiffness
+  CHECK_THROWS_WITH_AS(M::validate({.unloading = normal::Unloading::given}),
+                       doctest::Contains("unloading_stiffness"), InputError);
+  MESSAGE("relative errors at t_c/2000:" << errors.summary());
+}
+
 TEST_CASE("Walton-Braun with a force cap: plateau, then unloading from the cap") {
   using M = normal::WaltonBraun;
   Errors errors;

@@ -87,7 +87,113 @@ struct Ageing {
   }
 };
 
+/// A periodic stage's payload: records the step and time of each run.
+struct Sampler {
+  std::vector<long> steps;
+  std::vector<double> times;
+  long initialized = 0;
+  template <class Sim>
+  void initialize(Sim&) {
+    ++initialized;
+  }
+  template <class Sim>
+  void run(Sim& sim) {
+    steps.push_back(sim.step_count());
+    times.push_back(sim.time());
+  }
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(steps, times);
+  }
+};
+
 } // namespace
+
+TEST_CASE("periodic stages: by steps, by simulated time, by wall-clock time, with a limit") {
+  using Sim = Simulation<Disk, search::CellList, Contact2, stages<periodic<Sampler>>>;
+  auto make = [] {
+    Sim::Params prm;
+    prm.time_step = 3e-5; // below the Rayleigh time of the 1 mm glass disk, 3.8e-5 s
+    Sim sim(prm);
+    const auto m = sim.add_material(glass);
+    sim.add_particle({.position = Vec2(0, 0), .radius = 1e-3, .material = m});
+    return sim;
+  };
+  SUBCASE("every 7 steps: at steps 7, 14, ..., 49 of 50") {
+    Sim sim = make();
+    auto& ps = sim.stage<periodic<Sampler>>();
+    ps.every_steps = 7;
+    sim.steps(50);
+    CHECK(ps.stage.steps == std::vector<long>{7, 14, 21, 28, 35, 42, 49});
+    CHECK(ps.runs() == 7);
+    CHECK(ps.stage.initialized == 1);
+  }
+  SUBCASE("every 1e-4 s at a 3e-5 s step: the first step at or after each instant, once each") {
+    Sim sim = make();
+    auto& ps = sim.stage<periodic<Sampler>>();
+    ps.every_time = 1e-4;
+    sim.steps(100); // t = 3e-3 s: 30 instants
+    REQUIRE(ps.runs() == 30);
+    for (std::size_t k = 0; k < ps.stage.times.size(); ++k) {
+      const double instant = 1e-4 * static_cast<double>(k + 1);
+      CAPTURE(k);
+      CHECK(ps.stage.times[k] >= instant - 1e-16);
+      CHECK(ps.stage.times[k] - 3e-5 < instant);
+    }
+  }
+  SUBCASE("steps and time together: a run when either is due, once per step") {
+    Sim sim = make();
+    auto& ps = sim.stage<periodic<Sampler>>();
+    ps.every_steps = 5;
+    ps.every_time = 1.2e-4; // = 4 steps
+    sim.steps(20);
+    // steps 5, 10, 15, 20 and 4, 8, 12, 16, 20 (step 20 once)
+    CHECK(ps.stage.steps == std::vector<long>{4, 5, 8, 10, 12, 15, 16, 20});
+  }
+  SUBCASE("a wall-clock period: never within a long period, at every step with a tiny one") {
+    Sim sim = make();
+    auto& ps = sim.stage<periodic<Sampler>>();
+    ps.every_wall = 1e9;
+    sim.steps(20);
+    CHECK(ps.runs() == 0);
+    ps.every_wall = 1e-300;
+    sim.steps(20);
+    CHECK(ps.runs() == 20);
+  }
+  SUBCASE("at_start and max_runs") {
+    Sim sim = make();
+    auto& ps = sim.stage<periodic<Sampler>>();
+    ps.every_steps = 2;
+    ps.at_start = true;
+    ps.max_runs = 3;
+    sim.steps(20);
+    CHECK(ps.stage.steps == std::vector<long>{0, 2, 4});
+  }
+  SUBCASE("a checkpoint keeps the schedule: a restarted run runs at the same steps") {
+    Sim sim = make();
+    sim.stage<periodic<Sampler>>().every_steps = 7;
+    sim.steps(23);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "grain_periodic.ckp").string();
+    io::save_checkpoint(sim, path);
+    sim.steps(27);
+    Sim back = make();
+    back.stage<periodic<Sampler>>().every_steps = 7;
+    io::load_checkpoint(back, path);
+    std::filesystem::remove(path);
+    back.steps(27);
+    CHECK(back.stage<periodic<Sampler>>().stage.steps ==
+          sim.stage<periodic<Sampler>>().stage.steps);
+    CHECK(back.stage<periodic<Sampler>>().runs() == 7);
+  }
+  SUBCASE("no period, or a bad one, is refused when the run starts") {
+    Sim sim = make();
+    CHECK_THROWS_WITH_AS(sim.steps(1), doctest::Contains("every_steps, every_time, every_wall"),
+                         InputError);
+    sim.stage<periodic<Sampler>>().every_time = -1.0;
+    CHECK_THROWS_WITH_AS(sim.steps(1), doctest::Contains("every_time"), InputError);
+  }
+}
 
 TEST_CASE("stages: hooks run in loop order, once per step") {
   using Sim = Simulation<Disk, search::CellList, Contact2, stages<Recorder, BodyForce<2>>>;

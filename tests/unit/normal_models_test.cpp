@@ -675,9 +675,9 @@ TEST_CASE("normal models: bad parameters raise InputError naming model, value an
         "(required by Unloading::variable)");
   CHECK(has(error_of([] { WaltonBraun::validate({.max_force = -1.0}); }),
             {"normal::WaltonBraun", "max_force = -1", "[0, inf)"}));
-  CHECK(
-      has(error_of([] { WaltonBraun::validate({.unloading = static_cast<Unloading>(3)}); }),
-          {"normal::WaltonBraun", "unloading = 3", "Unloading::constant or Unloading::variable"}));
+  CHECK(has(error_of([] { WaltonBraun::validate({.unloading = static_cast<Unloading>(3)}); }),
+            {"normal::WaltonBraun", "unloading = 3",
+             "Unloading::constant, Unloading::variable or Unloading::given"}));
   CHECK(has(error_of([] { WaltonBraunPerContact::validate({.reference_velocity = -1.0}); }),
             {"normal::WaltonBraunPerContact", "reference_velocity = -1", "(0, inf)"}));
 

@@ -262,6 +262,10 @@ struct RunFile {
   std::map<std::string, ParamLine> params;
   std::vector<RecordLine> records;
   bool vtk = false;
+  /// `print <single 0|1> <n> <result>...`: DEMLab's .pos files (results: position, velocity,
+  /// acceleration, temperature)
+  bool print = false, print_single = false;
+  std::vector<std::string> print_results;
 
   bool mechanical() const { return analysis != "thermal"; }
   bool heated() const { return analysis != "mechanical"; }
@@ -432,6 +436,12 @@ inline RunFile read_run_file(const std::string& path) {
       p.orientation = t.number("orientation");
       p.radius = t.number("radius");
       p.material = t.integer("material index");
+      // the file's line in the message (add_particle would name the particle only)
+      for (const auto& [what, v] :
+           {std::pair<const char*, double>{"x", p.x}, {"y", p.y}, {"orientation", p.orientation}})
+        if (!std::isfinite(v)) fail(t.where, std::string("particle ") + what, text(v), "finite");
+      if (!(p.radius > 0.0 && std::isfinite(p.radius)))
+        fail(t.where, "particle radius", text(p.radius), "(0, inf) m");
       rf.particles.push_back(p);
     } else if (key == "wall") {
       WallLine w;
@@ -440,8 +450,13 @@ inline RunFile read_run_file(const std::string& path) {
       if (kind != "line" && kind != "circle") fail(t.where, "wall kind", kind, "line, circle");
       w.circle = kind == "circle";
       w.id = t.integer("wall id");
-      for (int k = 0; k < (w.circle ? 3 : 4); ++k)
+      for (int k = 0; k < (w.circle ? 3 : 4); ++k) {
         w.coords.push_back(t.number("wall coordinate"));
+        if (!std::isfinite(w.coords.back()))
+          fail(t.where, "wall coordinate", text(w.coords.back()), "finite");
+      }
+      if (w.circle && !(w.coords[2] > 0.0))
+        fail(t.where, "circle wall radius", text(w.coords[2]), "(0, inf) m");
       w.material = t.integer("material index");
       rf.walls.push_back(w);
     } else if (key == "initial") {
@@ -526,11 +541,24 @@ inline RunFile read_run_file(const std::string& path) {
       const long v = t.integer("vtk");
       if (v != 0 && v != 1) fail(t.where, "vtk", std::to_string(v), "0, 1");
       rf.vtk = v == 1;
+    } else if (key == "print") {
+      const long single = t.integer("print single_file");
+      if (single != 0 && single != 1)
+        fail(t.where, "print single_file", std::to_string(single), "0, 1");
+      rf.print = true;
+      rf.print_single = single == 1;
+      const long n = t.integer("print count");
+      for (long k = 0; k < n; ++k) {
+        const std::string r = t.word("print result");
+        if (r != "position" && r != "velocity" && r != "acceleration" && r != "temperature")
+          fail(t.where, "print result", r, "position, velocity, acceleration, temperature");
+        rf.print_results.push_back(r);
+      }
     } else {
       fail(t.where, "record", key,
            "name, analysis, shape, time_step, final_time, output_count, progress, gravity, "
            "damping, fluid, bbox, sink, material, particle, wall, initial, condition, param, "
-           "record, vtk");
+           "record, vtk, print");
     }
     t.end();
   }
@@ -1166,8 +1194,110 @@ struct Results {
     long step = 0;
     double time = 0.0;
     std::vector<double> values;
+    std::string pos_head, pos_position, pos_velocity, pos_temperature; ///< a .pos file's parts
   };
   std::shared_ptr<Pending> pending = std::make_shared<Pending>();
+  /// DEMLab's .pos files (Print): `<folder>/<name>_<step>.pos`, or all outputs in
+  /// `<folder>/<name>.pos` with `single`; the blocks in the order of `print_results`
+  struct PosFiles {
+    bool on = false, single = false;
+    std::string prefix; ///< <folder>/<name>
+    std::vector<std::string> results;
+    std::vector<std::pair<std::int64_t, std::uint32_t>> walls; ///< DEMLab id, grain index
+    std::shared_ptr<grain::io::detail::LineFile> file;         ///< the single file
+  };
+  PosFiles pos;
+
+  static std::string fixed15(double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.15f", v);
+    return b;
+  }
+  /// The state blocks of a .pos file (what the rates of the step do not change).
+  void pos_state(const Sim& s) const {
+    const auto& p = s.particles();
+    auto& q = *pending;
+    const auto [pp, pw] = s.contact_counts();
+    char b[256];
+    std::snprintf(b, sizeof b,
+                  "%%STEP %ld\n%%TIME %.6f\n\n%%PARTICLES    %zu\n%%WALLS        %zu\n"
+                  "%%INTERACTIONS %zu\n\n",
+                  s.step_count(), s.time(), p.size(), pos.walls.size(), pp + pw);
+    q.pos_head = (pos.single ? std::string(75, '-') + "\n" : std::string()) + b;
+    std::vector<std::size_t> order(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i)
+      order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t c) { return p.id[a] < p.id[c]; });
+    q.pos_position = "%PARTICLE_COORDINATE_ORIENTATION\n";
+    q.pos_velocity = "%PARTICLE_VELOCITY\n";
+    q.pos_temperature = "%PARTICLE_TEMPERATURE\n";
+    for (const auto i : order) {
+      const std::string id = std::to_string(p.id[i]);
+      q.pos_position += id + " " + fixed15(p.position[i].x()) + " " + fixed15(p.position[i].y()) +
+                        " " + fixed15(p.orientation[i]) + "\n";
+      q.pos_velocity += id + " " + fixed15(p.velocity[i].x()) + " " + fixed15(p.velocity[i].y()) +
+                        " " + fixed15(p.omega[i]) + "\n";
+      if constexpr (Sim::thermal) q.pos_temperature += id + " " + fixed15(p.temperature[i]) + "\n";
+    }
+    q.pos_position += "\n";
+    q.pos_velocity += "\n";
+    q.pos_temperature += "\n";
+    if (!pos.walls.empty()) {
+      q.pos_position += "%WALL_COORDINATE\n";
+      q.pos_temperature += "%WALL_TEMPERATURE\n";
+      for (const auto& [id, k] : pos.walls) {
+        const auto& w = s.walls()[k];
+        std::string line = std::to_string(id);
+        if (const auto* seg = std::get_if<walls::Segment>(&w.geometry))
+          line += " " + fixed15(seg->a.x()) + " " + fixed15(seg->a.y()) + " " +
+                  fixed15(seg->b.x()) + " " + fixed15(seg->b.y());
+        else if (const auto* c = std::get_if<walls::Circle>(&w.geometry))
+          line += " " + fixed15(c->center.x()) + " " + fixed15(c->center.y()) + " " +
+                  fixed15(c->radius);
+        q.pos_position += line + "\n";
+        q.pos_temperature += std::to_string(id) + " " + fixed15(w.temperature) + "\n";
+      }
+      q.pos_position += "\n";
+      q.pos_temperature += "\n";
+    }
+  }
+  /// Writes the .pos file of the pending output, its accelerations from the rates in `s`.
+  void pos_write(const Sim& s) const {
+    const auto& p = s.particles();
+    std::vector<std::size_t> order(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i)
+      order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t c) { return p.id[a] < p.id[c]; });
+    std::string text = pending->pos_head;
+    for (const auto& r : pos.results) {
+      if (r == "position") {
+        text += pending->pos_position;
+      } else if (r == "velocity") {
+        text += pending->pos_velocity;
+      } else if (r == "temperature") {
+        text += pending->pos_temperature;
+      } else {
+        text += "%PARTICLE_ACCELERATION\n";
+        for (const auto i : order) {
+          const Vec2 a = Vec2(p.force[i]) * p.inv_mass[i];
+          text += std::to_string(p.id[i]) + " " + fixed15(a.x()) + " " + fixed15(a.y()) + " " +
+                  fixed15(p.torque[i] * p.inv_inertia[i]) + "\n";
+        }
+        text += "\n";
+      }
+    }
+    const std::string path = pos.single ? pos.prefix + ".pos"
+                                        : pos.prefix + "_" + std::to_string(pending->step) + ".pos";
+    if (pos.single) {
+      pos.file->write(text);
+    } else {
+      grain::io::detail::AtomicFile f("grain-demlab print", path);
+      f.stream() << text;
+      f.commit();
+    }
+  }
 
   /// True for the columns whose value grain evaluates within a step (forces, torques,
   /// accelerations, particle heat rates).
@@ -1184,6 +1314,7 @@ struct Results {
     pending->step = s.step_count();
     pending->time = s.time();
     pending->values = values(s);
+    if (pos.on) pos_state(s);
   }
   /// After every step: completes and writes the row captured before it.
   void fill(const Sim& s) const {
@@ -1192,6 +1323,7 @@ struct Results {
     auto row = pending->values;
     for (std::size_t k = 0; k < columns.size(); ++k)
       if (rate(columns[k])) row[k] = now[k];
+    if (pos.on) pos_write(s);
     write(row);
   }
   bool due() const { return pending->due; }
@@ -1664,6 +1796,27 @@ int run(const std::string& path, const std::string& out) {
   Results<Sim> results{columns, std::make_shared<grain::io::detail::LineFile>(
                                     "grain-demlab results", out + "/results.csv")};
   results.file->write(header + "\n");
+  if (rf.print && !rf.print_results.empty()) {
+    auto& pos = results.pos;
+    pos.on = true;
+    pos.single = rf.print_single;
+    pos.prefix = out + "/" + rf.name;
+    for (const auto& r : rf.print_results) {
+      const bool thermal_r = r == "temperature";
+      const bool mech_r = r == "velocity" || r == "acceleration";
+      // DEMLab prints what the analysis has (a warning for the rest)
+      if ((thermal_r && !rf.heated()) || (mech_r && !rf.mechanical()))
+        note("Print result " + r + " is not available in a " + rf.analysis +
+             " analysis: not printed");
+      else
+        pos.results.push_back(r);
+    }
+    for (const auto& [id, k] : wall_index)
+      pos.walls.push_back({id, k});
+    if (pos.single)
+      pos.file =
+          std::make_shared<grain::io::detail::LineFile>("grain-demlab print", pos.prefix + ".pos");
+  }
 
   // ---- notes on the models
   if constexpr (Sim::thermal)

@@ -21,7 +21,9 @@
 ///     (the two criteria coincide for this model).
 ///   - `time`: K_L = (pi/c_t)^2 X (1 + e)^2 / 4, so that the Walton-Braun contact duration
 ///     (pi/2) sqrt(m*/K_L) (1 + e) equals the undamped Hertz one, c_t (m*^2/(R* E*^2 v))^(1/5).
-///     e is the model's own restitution: the pair's e for constant unloading; for variable
+///     e is the model's own restitution: the pair's e for constant unloading; for a given K_U,
+///     e = sqrt(K_L/K_U), and with A = (pi/c_t)^2 X / 4, sqrt(K_L) = sqrt(A) / (1 - sqrt(A/K_U))
+///     (K_L = K_U, elastic, when A >= K_U / 4); for variable
 ///     unloading e = (1 + S v sqrt(m*/K_L))^(-1/2) depends on K_L, and K_L = A s^2 (A =
 ///     (pi/c_t)^2 X / 4, s = 1 + e) solves s^3 + (b - 2) s^2 - 2 b s + b = 0 on (1, 2],
 ///     b = S v sqrt(m*/A) (Newton's method). DEMLab reuses the linear spring-dashpot factor
@@ -31,7 +33,10 @@
 /// - K_U [N/m]: `Unloading::constant` (default): K_U = K_L / e^2 (e: the pair's restitution), so
 ///   an isolated contact rebounds with e = sqrt(K_L/K_U) exactly. `Unloading::variable`:
 ///   K_U = K_L + S F_max with S = `unloading_slope` [1/m], so e = (1 + S v sqrt(m*/K_L))^(-1/2)
-///   decreases with the impact velocity.
+///   decreases with the impact velocity. `Unloading::given`: K_U = `unloading_stiffness` [N/m]
+///   (the seed's UnloadingStiffCoeffValue), so e = sqrt(K_L/K_U); a K_U below the contact's K_L
+///   is taken as K_L (an elastic contact: a smaller one would give back more energy than it
+///   took).
 /// - `max_force` [N] (0 = none): the loading force is capped (perfectly plastic beyond it); the
 ///   unloading line then starts from (delta_max, max_force).
 ///
@@ -66,7 +71,8 @@ namespace grain::normal {
 /// Unloading stiffness of `WaltonBraun`.
 enum class Unloading {
   constant, ///< K_U = K_L / e^2 (default)
-  variable  ///< K_U = K_L + S F_max
+  variable, ///< K_U = K_L + S F_max
+  given     ///< K_U = Params::unloading_stiffness
 };
 
 template <class ImpactVelocity = ReferenceVelocity>
@@ -87,7 +93,9 @@ struct BasicWaltonBraun {
     Equivalence equivalence = Equivalence::energy; ///< formulation of the Hertz-equivalent K_L
     Unloading unloading = Unloading::constant;     ///< unloading stiffness K_U
     double unloading_slope = 0.0; ///< S [1/m] of K_U = K_L + S F_max; required (> 0) if variable
-    double max_force = 0.0;       ///< cap of the normal force [N]; 0 = no cap
+    /// K_U [N/m] of Unloading::given; required (> 0) there
+    double unloading_stiffness = 0.0;
+    double max_force = 0.0; ///< cap of the normal force [N]; 0 = no cap
     /// per-contact velocity only: measured impact velocities below this use
     /// `reference_velocity` [m/s]
     double min_impact_velocity = 0.01;
@@ -108,9 +116,14 @@ struct BasicWaltonBraun {
       if constexpr (ImpactVelocity::per_contact)
         detail::require_positive(object, "min_impact_velocity", p.min_impact_velocity);
     }
-    detail::require(p.unloading == Unloading::constant || p.unloading == Unloading::variable,
+    detail::require(p.unloading == Unloading::constant || p.unloading == Unloading::variable ||
+                        p.unloading == Unloading::given,
                     object, "unloading", static_cast<int>(p.unloading),
-                    "Unloading::constant or Unloading::variable");
+                    "Unloading::constant, Unloading::variable or Unloading::given");
+    if (p.unloading == Unloading::given)
+      detail::require(std::isfinite(p.unloading_stiffness) && p.unloading_stiffness > 0.0, object,
+                      "unloading_stiffness", p.unloading_stiffness,
+                      "(0, inf) N/m (required by Unloading::given)");
     if (p.unloading == Unloading::variable)
       detail::require(std::isfinite(p.unloading_slope) && p.unloading_slope > 0.0, object,
                       "unloading_slope", p.unloading_slope,
@@ -126,6 +139,14 @@ struct BasicWaltonBraun {
     if (p.equivalence != Equivalence::time) return hertz_equivalent::energy_coefficient * x;
     const double a = 0.25 * hertz_equivalent::time_coefficient * x;
     double s = 1.0 + pair.restitution;
+    if (p.unloading == Unloading::given) {
+      // K_L = A (1 + sqrt(K_L/K_U))^2: sqrt(K_L) = sqrt(A) / (1 - sqrt(A/K_U)); no solution
+      // with K_L < K_U when A >= K_U/4: the contact is then elastic, K_L = K_U
+      const double r = std::sqrt(a / p.unloading_stiffness);
+      if (r >= 0.5) return p.unloading_stiffness;
+      const double u = std::sqrt(a) / (1.0 - r);
+      return u * u;
+    }
     if (p.unloading == Unloading::variable) {
       // s^3 + (b - 2) s^2 - 2 b s + b = 0 on (1, 2]: increasing and convex there, so Newton's
       // method from s = 2 decreases monotonically to the root.
@@ -145,6 +166,7 @@ struct BasicWaltonBraun {
   static double unloading_stiffness(const PairProperties& pair, const Params& p, double k_load,
                                     double f_max) {
     if (p.unloading == Unloading::variable) return k_load + p.unloading_slope * f_max;
+    if (p.unloading == Unloading::given) return std::max(p.unloading_stiffness, k_load);
     return k_load / (pair.restitution * pair.restitution);
   }
 
