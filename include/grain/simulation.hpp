@@ -301,7 +301,10 @@ public:
       w.update_motion(time_);
     }
     if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
+    Life::update_walls(*this, time_);
     Neighbours::initial_build(*this);
+    // particles outside the bounding box or inside a sink at the start never take part
+    if (life_.bounding_box || !life_.sinks.empty()) Life::lifecycle(*this, false);
     Check::start_overlaps(*this);
     ensure_groups();
     cond_.restrain_velocities(particles_);
@@ -471,6 +474,11 @@ private:
         w.update_temperature(time_);
     ensure_groups();
     call_stages<Hook::begin_step>();
+    {
+      // walls that appear or disappear by the time the step's forces are evaluated
+      const double tf = moves() && IntegratorT::drift_before_forces ? time_ + dt : time_;
+      if (tf >= next_wall_event_) Life::wall_events(*this, tf);
+    }
     // the loads of the step are checked before anything moves (a damping function that turns
     // negative stops the run at whole steps)
     if (moves()) global_loads(IntegratorT::drift_before_forces ? time_ + dt : time_);
@@ -592,7 +600,8 @@ public:
     // stages with state to keep across a restart visit it themselves
     detail::serialize_stages(stages_, ar);
     for (auto& w : walls_)
-      ar(w.geometry, w.snapshot, w.pivot, w.options.velocity, w.options.omega, w.temperature);
+      ar(w.geometry, w.snapshot, w.pivot, w.options.velocity, w.options.omega, w.temperature,
+         w.options.active, w.removed, w.present);
     ar(list_.offsets, list_.partners, list_.wall_offsets, list_.walls, list_.max_span);
     ar(hist_.pair, hist_.wall, snapshot_);
     ar(dt_, time_, time_offset_, end_time_, r_max_, skin_, reach_, cutoff_, heat_on_);
@@ -649,6 +658,7 @@ public:
       life_.removal_requests.clear(); // the state read is complete
       fresh_ids_.clear();             // a continued state, not a start
       checked_walls_ = walls_.size();
+      next_wall_event_ = -std::numeric_limits<double>::infinity(); // times checked at the next step
       start_limits_.clear(); // computed by the next run, once the loaded state is checked
       groups_dirty_ = true;
       if (vprops_.per_particle && initialized_) Neighbours::refresh_pair_cache(*this);
@@ -1060,8 +1070,9 @@ private:
   std::vector<std::uint32_t> origin_;
   RunCounters counters_;
   // state checks (StateCheck)
-  std::vector<std::int64_t> fresh_ids_;   ///< particles added since the last start
-  std::size_t checked_walls_ = 0;         ///< walls below this index were there at the last start
+  std::vector<std::int64_t> fresh_ids_; ///< particles added since the last start
+  std::size_t checked_walls_ = 0;       ///< walls below this index were there at the last start
+  double next_wall_event_ = std::numeric_limits<double>::infinity(); ///< a wall (dis)appears
   std::string start_limits_;              ///< the stable limits at the start, for messages
   mutable std::string warned_insulating_; ///< the materials of the last conductivity warning
 };

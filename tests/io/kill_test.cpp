@@ -251,11 +251,11 @@ const std::map<std::string, std::vector<std::string>> kArrays = {
     {"bed_particles",
      {"id", "radius", "velocity", "omega", "force", "torque", "mass", "orientation", "material"}},
     {"bin_particles", {"id", "velocity"}},
-    {"bed_walls", {"wall"}},
-    {"bin_walls", {"wall"}},
+    {"bed_walls", {"wall", "present"}},
+    {"bin_walls", {"wall", "present"}},
     {"bed_contacts",
-     {"wall", "id_i", "id_j", "normal_force", "tangential_force", "normal", "force_local",
-      "overlap", "contact_radius"}},
+     {"wall", "id_i", "id_j", "normal_force", "normal_viscous", "tangential_force", "normal",
+      "force_local", "overlap", "contact_radius"}},
 };
 /// The arrays of a file of kind `kind` ("bin_contacts" as "bed_contacts"); none if unknown.
 const std::vector<std::string>* arrays_of(const std::string& kind) {

@@ -17,7 +17,8 @@ Checked for every series and kind (particles, walls, contacts):
   simulation keeps them, one vertex each, the point positions, and exactly the series' fields
   ("all" = every mechanical field, and the thermal ones in a thermal run) with the right number
   of components and types, each value equal to the simulation's;
-- walls: one cell (a line in 2D, a polygon in 3D) per wall, cell field "wall" = wall index (and,
+- walls: one cell (a line in 2D, a polygon in 3D) per wall, cell fields "wall" = wall index and
+  "present" (1 while the wall takes part in contacts) (and,
   for a thermal simulation, "conducts" and "temperature"), and points on the wall geometry
   (segment and triangle corners, circle polygon, plane square);
 - contacts: one line per contact (with a group: per contact touching the group), from the
@@ -55,7 +56,8 @@ PARTICLE_FIELDS = {"id": (1, 1, True), "radius": (1, 1, False), "velocity": (3, 
 THERMAL_FIELDS = {"temperature": (1, 1, False), "heat_rate": (1, 1, False),
                   "heat_capacity": (1, 1, False)}
 FILE_NAME = re.compile(r"^(?P<series>.+)_(?P<kind>particles|walls|contacts)_(?P<number>\d{6})\.vtk$")
-CONTACT_FIELDS = {"wall": 1, "id_i": 1, "id_j": 1, "normal_force": 1, "tangential_force": 3,
+CONTACT_FIELDS = {"wall": 1, "id_i": 1, "id_j": 1, "normal_force": 1, "normal_viscous": 1,
+                  "tangential_force": 3,
                   "normal": 3, "force_local": 3, "overlap": 1, "contact_radius": 1}
 
 failures = []
@@ -399,9 +401,15 @@ def check_walls(path, frame, run, circle_segments, plane_size):
     cd = poly.GetCellData()
     names = {cd.GetArrayName(k) for k in range(cd.GetNumberOfArrays())}
     thermal = "temperature" in walls[0]
-    want_names = {"wall", "conducts", "temperature"} if thermal else {"wall"}
+    want_names = {"wall", "present", "conducts", "temperature"} if thermal else {"wall", "present"}
     if names != want_names:
         fail(path, f"cell fields {sorted(names)}, expected {sorted(want_names)}")
+    present = get_array(path, cd, "present", 1, True)
+    if present is not None:
+        for c in range(min(cells, len(walls))):
+            if int(present.GetTuple1(c)) != walls[c]["present"]:
+                fail(f"{path}: wall {c}", f"present = {int(present.GetTuple1(c))}, "
+                                          f"expected {walls[c]['present']}")
     if thermal:
         conducts = get_array(path, cd, "conducts", 1, True)
         temperature = get_array(path, cd, "temperature", 1, False)
@@ -474,7 +482,8 @@ def check_contacts(path, frame, contacts, count, thermal):
         seen.add(key)
         e = expected[key]
         where = f"{path}: contact {key}"
-        for name in ("normal_force", "overlap", "contact_radius") + (("heat_rate",) if thermal else ()):
+        for name in ("normal_force", "normal_viscous", "overlap", "contact_radius") + (
+                ("heat_rate",) if thermal else ()):
             check_scalar(where, name, arrays[name].GetTuple1(c), e[name])
         check_vector(where, "tangential_force", arrays["tangential_force"].GetTuple3(c),
                      e["tangential_force"])

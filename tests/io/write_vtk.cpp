@@ -168,6 +168,8 @@ struct Recorder {
     for (std::size_t w = 0; w < sim.walls().size(); ++w) {
       o << (w ? ",\n         " : "\n         ")
         << std::visit([](const auto& g) { return wall_json(g); }, sim.walls()[w].geometry);
+      o.seekp(-1, std::ios_base::cur); // reopen the wall's object
+      o << ", \"present\": " << (sim.walls()[w].present ? 1 : 0) << "}";
       if constexpr (Sim::thermal) {
         const auto& wall = sim.walls()[w];
         o.seekp(-1, std::ios_base::cur); // reopen the wall's object
@@ -185,6 +187,7 @@ struct Recorder {
       o << (first ? "\n         " : ",\n         ") << "{\"id_i\": " << p.id[i]
         << ", \"id_j\": " << (wall ? -1 : p.id[j]) << ", \"wall\": " << (wall ? long(j) : -1L)
         << ", \"normal_force\": " << num(r.normal.force)
+        << ", \"normal_viscous\": " << num(r.normal.viscous)
         << ", \"tangential_force\": " << vec<Sim::dimension>(r.tangent.force)
         << ", \"normal\": " << vec<Sim::dimension>(g.normal) << ", \"overlap\": " << num(g.overlap)
         << ", \"contact_radius\": "
@@ -504,6 +507,12 @@ void spheres(const std::filesystem::path& dir, std::string& runs, std::string& s
                        .velocity = grain::Vec3(0.002, 0.0, 0.001),
                        .omega = grain::Vec3(0.0, 0.0, 2.0),
                        .temperature = 330.0});
+  // a gate switched off: written with present = 0
+  grain::WallOptions<3> gate;
+  gate.name = "gate";
+  gate.material = m;
+  gate.active = false;
+  sim.add_wall(grain::walls::Plane{{0.0, 0.0, 0.5}, grain::Vec3(0.0, 0.0, -1.0)}, gate);
   // 4 touches 20 and the floor; 20, 9 and 15 have contacts without 4 or 1; 1 touches the tray
   sim.add_group("pair", {4, 1});
   sim.add_group("nobody", {});

@@ -350,6 +350,90 @@ TEST_CASE("conditions: prescribed heat rate and heat flux heat an isolated parti
   }
 }
 
+TEST_CASE("conditions: heat rates and forces that depend on temperature and speed") {
+  // The first seed's prescribed conditions with temperature or speed as independent variable.
+  // (1) Q(T) = h (T_inf - T) (a linear function of T: 0 - h (T - T_inf)) on an isolated sphere,
+  // thermal analysis: forward Euler gives T_n - T_inf = (T0 - T_inf)(1 - h dt/C)^n exactly
+  // (round-off, 1e-11 of the initial difference), and the continuous solution
+  // exp(-h t/C) within the scheme's truncation, n (h dt/C)^2/2 = 7e-4 of it (tolerance 1e-3).
+  // (2) A radiative heat flux q(T) = eps sigma (T_e^4 - T^4) as a callable of T: C dT/dt =
+  // -K' (T^4 - a^4) with K' = eps sigma S, whose solution gives the time to reach T as
+  // t = [G(T0) - G(T)] C / K', G(T) = (ln((T - a)/(T + a)) - 2 atan(T/a)) / (4 a^3). Cooling
+  // from 1000 K towards a = 500 K for 80 s in steps of 0.01 s (the radiative time constant
+  // C / (4 K' T^3) is 37 s at 1000 K): forward Euler's time error is about dt/2 over the run,
+  // 1e-4 relative (tolerance 1e-3).
+  // (3) A drag force F = -c |v| along x as a function of speed, on a sphere moving along +x:
+  // v = v0 exp(-c t/m); velocity Verlet with the force of the half-step velocity, c dt/m = 1e-3,
+  // follows it to about (c dt / m) x (c t / m) = 1e-3 of v0 after 0.5 s (tolerance 2e-3).
+  const double C = sphere_mass() * cap;
+  {
+    const double h = 0.01, T_inf = 350.0, T0 = 300.0, dt = 1.0;
+    const long n = 1000;
+    Sim3T::Params p;
+    p.time_step = dt;
+    p.analysis = Analysis::thermal;
+    p.initial_temperature = T0;
+    Sim3T sim(p);
+    const auto k = sim.add_material(grain_material());
+    sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k});
+    sim.prescribe_heat_rate("all", TimeFunction::linear(0.0, -h, T_inf), Variable::temperature);
+    sim.steps(n);
+    const double T = sim.particles().temperature[0];
+    const double discrete = T_inf + (T0 - T_inf) * std::pow(1.0 - h * dt / C, n);
+    const double exact = T_inf + (T0 - T_inf) * std::exp(-h * sim.time() / C);
+    CHECK(std::abs(T - discrete) < 1e-11 * std::abs(T0 - T_inf));
+    CHECK(std::abs(T - exact) < 1e-3 * std::abs(T0 - T_inf));
+    MESSAGE("Q(T) = h (T_inf - T): T = " << T << " K, closed form " << exact << " K");
+  }
+  {
+    const double eps = 0.8, sigma = 5.670374419e-8, a = 500.0, T0 = 1000.0, dt = 0.01;
+    const long n = 8000;
+    Sim3T::Params p;
+    p.time_step = dt;
+    p.analysis = Analysis::thermal;
+    p.initial_temperature = T0;
+    Sim3T sim(p);
+    const auto k = sim.add_material(grain_material());
+    sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k});
+    sim.prescribe_heat_flux("all", TimeFunction::callable([&](double T) {
+                              return eps * sigma * (std::pow(a, 4) - std::pow(T, 4));
+                            }),
+                            Variable::temperature);
+    sim.steps(n);
+    const double T = sim.particles().temperature[0];
+    auto G = [&](double x) {
+      return (std::log((x - a) / (x + a)) - 2.0 * std::atan(x / a)) / (4.0 * a * a * a);
+    };
+    const double Kp = eps * sigma * 4.0 * pi * R * R;
+    const double t_closed = (G(T0) - G(T)) * C / Kp;
+    REQUIRE(T < 800.0);
+    CHECK(t_closed == approx(sim.time()).epsilon(1e-3));
+    MESSAGE("radiative cooling to " << T << " K: closed-form time " << t_closed << " s, run "
+                                    << sim.time() << " s");
+  }
+  {
+    const double c = 0.02, v0 = 0.2, dt = 5e-4, m = sphere_mass();
+    auto sim = make<Sim3<>>(dt);
+    const auto k = sim.add_material(grain_material());
+    sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k, .velocity = {v0, 0, 0}});
+    sim.prescribe_force("all",
+                        VectorTimeFunction<3>::along(Vec3::UnitX(), TimeFunction::linear(0.0, -c)),
+                        Variable::speed);
+    sim.steps(1000);
+    const double v = sim.particles().velocity[0][0];
+    const double exact = v0 * std::exp(-c * sim.time() / m);
+    CHECK(std::abs(v - exact) < 2e-3 * v0);
+    MESSAGE("drag of speed: v = " << v << " m/s, closed form " << exact << " m/s");
+    // temperature needs a thermal state
+    auto mech = make<Sim3<>>(dt);
+    mech.add_material(grain_material());
+    CHECK_THROWS_WITH_AS(mech.prescribe_force("all", Vec3(1, 0, 0), Variable::temperature),
+                         doctest::Contains("prescribe_force (group 'all'): of = temperature is "
+                                           "invalid without a conduction model"),
+                         InputError);
+  }
+}
+
 TEST_CASE("conditions: fixed temperatures at both ends of a row of three particles") {
   // Three equal spheres in a row, overlaps delta = 1e-4 m, thermal analysis. The ends are held
   // at T1 and T2 by fix_temperature on two groups; the middle obeys C dT/dt = H (T1 - T) +

@@ -29,6 +29,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace {
@@ -223,3 +224,92 @@ TEST_CASE("Hertz impact: 3D sphere on a plane wall") { run_case(sphere_plane); }
 TEST_CASE("Hertz impact: 2D disk-disk, head-on") { run_case(disk_disk); }
 
 TEST_CASE("Hertz impact: 2D disk on a segment wall") { run_case(disk_segment); }
+
+// Per-contact records (io::ContactRecorder) of undamped Hertz impacts, no gravity: a sphere
+// (R = 5 mm) 1 mm above a plane of its own material at v = 0.5 m/s, and two spheres (ids 7 and
+// 3) approaching head-on. Each record starts at the first step end at or after the first touch
+// (t0 = gap / v; so within [t0, t0 + dt)), lasts the contact time 2.9432 delta_max / v to one
+// step (the steps in contact times dt), and has the closed-form extremes: delta_max, F_max =
+// K_hz delta_max^(3/2) and the area pi a^2 with the Hertz radius a = sqrt(R* delta_max) (1 %,
+// the peak sampled at t_c/200); its impact velocity is v to 1 %.
+TEST_CASE("contact records: start, duration and extremes of Hertz impacts") {
+  using Sim = grain::Simulation<grain::Sphere, grain::search::CellList, HertzContact>;
+  const double r = 5e-3, v = 0.5, gap = 1e-3;
+  grain::Material m = particle_material(1e8, 0.3, 2500.0);
+  m.restitution = 1.0;
+  const double mass = 2500.0 * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double estar = 1.0 / (2.0 * (1.0 - 0.09) / 1e8);
+  auto check = [&](const grain::io::ContactRecord& c, double m_eff, double r_eff, double dt) {
+    const double dmax = std::pow(15.0 * m_eff * v * v / (16.0 * estar * std::sqrt(r_eff)), 0.4);
+    const double tc = 2.9432 * dmax / v;
+    const double t0 = gap / v;
+    CHECK(c.start_time >= t0 - 1e-12);
+    CHECK(c.start_time < t0 + dt);
+    CHECK(std::abs(c.duration() - tc) < dt);
+    CHECK(c.end_step - c.start_step == static_cast<long>(std::lround(c.duration() / dt)));
+    CHECK(c.max_overlap == doctest::Approx(dmax).epsilon(0.01));
+    const double fmax = 4.0 / 3.0 * estar * std::sqrt(r_eff) * std::pow(dmax, 1.5);
+    CHECK(c.max_normal_force == doctest::Approx(fmax).epsilon(0.01));
+    CHECK(c.max_area == doctest::Approx(std::numbers::pi * r_eff * dmax).epsilon(0.01));
+    CHECK(c.impact_velocity == doctest::Approx(v).epsilon(0.01));
+    CHECK(c.area > 0.0);
+    MESSAGE("record: duration " << c.duration() << " s (t_c " << tc << " s), delta_max "
+                                << c.max_overlap << " m (" << dmax << ")");
+    return tc;
+  };
+  {
+    const double dmax = std::pow(15.0 * mass * v * v / (16.0 * estar * std::sqrt(r)), 0.4);
+    const double dt = 2.9432 * dmax / v / 200.0;
+    Sim sim({.time_step = dt});
+    const auto k = sim.add_material(m);
+    sim.add_wall(grain::walls::Plane{grain::Vec3::Zero(), grain::Vec3::UnitZ()}, {.material = k});
+    sim.add_particle({.position = grain::Vec3(0, 0, r + gap),
+                      .radius = r,
+                      .material = k,
+                      .velocity = grain::Vec3(0, 0, -v),
+                      .id = 4});
+    grain::io::ContactRecorder records("contact_records_test.csv");
+    sim.run(gap / v + 3.0 * 2.9432 * dmax / v, records);
+    REQUIRE(records.finished().size() == 1);
+    CHECK(records.ongoing().empty());
+    const auto& c = records.finished()[0];
+    CHECK(c.id_i == 4);
+    CHECK(c.id_j == -1);
+    CHECK(c.wall == 0);
+    check(c, mass, r, dt);
+    std::FILE* f = std::fopen("contact_records_test.csv", "r");
+    REQUIRE(f != nullptr);
+    int lines = 0;
+    for (int ch; (ch = std::fgetc(f)) != EOF;)
+      lines += ch == '\n';
+    std::fclose(f);
+    std::remove("contact_records_test.csv");
+    CHECK(lines == 2); // the header and the record
+  }
+  {
+    const double m_eff = 0.5 * mass, r_eff = 0.5 * r;
+    const double dmax = std::pow(15.0 * m_eff * v * v / (16.0 * estar * std::sqrt(r_eff)), 0.4);
+    const double dt = 2.9432 * dmax / v / 200.0;
+    Sim sim({.time_step = dt});
+    const auto k = sim.add_material(m);
+    sim.add_particle({.position = grain::Vec3(0, 0, 0),
+                      .radius = r,
+                      .material = k,
+                      .velocity = grain::Vec3(0.5 * v, 0, 0),
+                      .id = 7});
+    sim.add_particle({.position = grain::Vec3(2 * r + gap, 0, 0),
+                      .radius = r,
+                      .material = k,
+                      .velocity = grain::Vec3(-0.5 * v, 0, 0),
+                      .id = 3});
+    grain::io::ContactRecorder records;
+    sim.run(gap / v + 0.5 * 2.9432 * dmax / v, records);
+    REQUIRE(records.ongoing().size() == 1); // mid-contact
+    CHECK(records.ongoing()[0].id_i == 3);
+    CHECK(records.ongoing()[0].id_j == 7);
+    CHECK(records.ongoing()[0].wall == -1);
+    sim.run(2.9432 * dmax / v, records); // the records continue across runs
+    REQUIRE(records.finished().size() == 1);
+    check(records.finished()[0], m_eff, r_eff, dt);
+  }
+}

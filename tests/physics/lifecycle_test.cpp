@@ -2,8 +2,8 @@
 // removal or an activation does to the rest of the simulation (ids, neighbour list, contact
 // histories), against closed forms.
 //
-// Semantics under test (include/grain/simulation.hpp, step 7): at the end of every step, after
-// time advanced to t = n dt, particles whose centre is outside an active bounding box or inside an
+// Semantics under test (include/grain/simulation.hpp, step 7): at the start of a run (bounding
+// box and sinks) and at the end of every step, after time advanced to t = n dt, particles whose centre is outside an active bounding box or inside an
 // active sink, or whose destruction time is <= t, are removed with their contacts; particles
 // whose creation time is <= t are activated. A region is active while t_begin <= t <= t_end.
 //
@@ -18,10 +18,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <doctest/doctest.h>
 #include <grain/grain.hpp>
 #include <limits>
+#include <numbers>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -105,7 +108,7 @@ long exit_step(double h) {
 /// A particle (id 1) falls from rest at x0 inside the bounding box `region`; its centre leaves
 /// the region after a drop of h. A fixed particle (id 0) rests inside, the fixed particles
 /// `outside` (ids 2, 3, ...) rest outside. Checks that the fixed outside particles go at the
-/// first step, that the falling one goes exactly at step n* (exit_step) and the one inside
+/// start of the run (before the first step), that the falling one goes exactly at step n* (exit_step) and the one inside
 /// never.
 template <class Sim, class R>
 void check_bounding_box(const R& region, const Vec<Sim::dimension>& x0, double h,
@@ -128,9 +131,11 @@ void check_bounding_box(const R& region, const Vec<Sim::dimension>& x0, double h
   sim.set_bounding_box(region);
   const long n = exit_step(h);
 
-  sim.steps(1); // the particles that start outside go at the first step
+  sim.steps(0); // the particles that start outside go at the start, before the first step
   CHECK(removed_set(sim) == out_ids);
   CHECK(sim.size() == 2);
+  sim.steps(1);
+  CHECK(removed_set(sim) == out_ids);
 
   sim.steps(n - 2); // step n* - 1: the falling centre is still inside
   CHECK(removed_set(sim) == out_ids);
@@ -910,4 +915,172 @@ TEST_CASE("lifecycle: an id already in use is rejected") {
       doctest::Contains("id = 8"), InputError);
   CHECK(sim.size() == 1);
   CHECK(sim.inactive_count() == 1);
+}
+
+// A particle that starts outside the bounding box or inside a sink is removed at the start of the
+// run, before the start-overlap check and the first step: two particles overlapping by half a
+// radius (the check refuses more than max_start_overlap = 5 % of the radius) outside the box, and
+// two inside a sink, do not stop the run, and no force ever acts on the particle inside (it keeps
+// its velocity exactly).
+TEST_CASE(
+    "lifecycle: particles outside the bounding box or inside a sink go before the first step") {
+  Sim3 sim(params<Sim3>(Vec3::Zero()));
+  const auto k = sim.add_material(soft());
+  const double r = 1e-3;
+  const Vec3 v(0.01, 0, 0);
+  sim.add_particle({.position = Vec3::Zero(), .radius = r, .material = k, .velocity = v, .id = 0});
+  sim.add_particle({.position = Vec3(0.1, 0, 0), .radius = r, .material = k, .id = 1});
+  sim.add_particle({.position = Vec3(0.1 + 1.5 * r, 0, 0), .radius = r, .material = k, .id = 2});
+  sim.add_particle({.position = Vec3(0, 0.02, 0), .radius = r, .material = k, .id = 3});
+  sim.add_particle({.position = Vec3(0, 0.02 + 1.5 * r, 0), .radius = r, .material = k, .id = 4});
+  sim.set_bounding_box(regions::Box<3>{Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)});
+  sim.add_sink(regions::Ball<3>{Vec3(0, 0.021, 0), 0.005});
+  CHECK(sim.size() == 5);
+  REQUIRE_NOTHROW(sim.steps(0));
+  CHECK(sim.size() == 1);
+  CHECK(removed_set(sim) == std::set<std::int64_t>{1, 2, 3, 4});
+  CHECK(sim.contact_counts().first == 0);
+  sim.steps(100);
+  CHECK(sim.particles().velocity[0] == v);
+  CHECK(sim.particles().position[0][0] == test::approx(100 * dt * v[0]).epsilon(1e-12));
+}
+
+// ------------------------------------------------------------------------------------------ walls
+// Wall lifecycle (WallOptions::active, creation_time, destruction_time; set_wall_active,
+// remove_wall): a wall takes part in the forces evaluated at times t with creation_time <= t <
+// destruction_time. A sphere rests on a floor (z = 0) destroyed at t_d (placed mid-step): the
+// forces of the first step whose end time is >= t_d have no contact, so from the end of that step
+// the sphere falls freely from its state (z_d, v_d) there; velocity Verlet under constant gravity
+// gives exactly z = z_d + v_d s - g s^2/2 (s the time since), round-off only (1e-12 m). A second
+// floor at z = -5 mm, created at t_c = 0.02 s (before the sphere reaches it: the drop of 5 mm
+// from rest takes 0.032 s), catches it; the sphere then comes to rest on it at the Hertz
+// equilibrium overlap delta = (m g / (4/3 E* sqrt(r)))^(2/3) = 1.84 um (2 % with what remains of
+// the bounces after 0.3 s at e = 0.3).
+TEST_CASE("lifecycle: a wall takes part in contacts only between its creation and destruction") {
+  Sim3 sim(params<Sim3>(Vec3(0, 0, -g0)));
+  Material m = soft();
+  m.restitution = 0.3;
+  const auto k = sim.add_material(m);
+  const double r = 2e-3, td = 0.0100005, tc = 0.02;
+  WallOptions<3> first;
+  first.material = k;
+  first.destruction_time = td;
+  WallOptions<3> second;
+  second.material = k;
+  second.creation_time = tc;
+  const auto w0 = sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, first);
+  const auto w1 = sim.add_wall(walls::Plane{Vec3(0, 0, -5e-3), Vec3::UnitZ()}, second);
+  sim.add_particle({.position = Vec3(0, 0, r), .radius = r, .material = k, .id = 0});
+  sim.steps(0);
+  CHECK(sim.wall_present(w0));
+  CHECK(!sim.wall_present(w1));
+  const long nd = static_cast<long>(std::ceil(td / dt));
+  REQUIRE(static_cast<double>(nd) * dt > td);
+  sim.steps(nd - 1);
+  CHECK(sim.contact_counts().second == 1);
+  CHECK(sim.wall_present(w0));
+  sim.steps(1); // the forces at t = nd dt >= t_d: the floor is gone
+  CHECK(!sim.wall_present(w0));
+  CHECK(sim.contact_counts().second == 0);
+  const double zd = sim.particles().position[0][2], vd = sim.particles().velocity[0][2];
+  const double t_d = sim.time();
+  const long nc = static_cast<long>(std::ceil(tc / dt)) - nd;
+  sim.steps(nc - 1);
+  CHECK(!sim.wall_present(w1));
+  const double s = sim.time() - t_d;
+  const double z_free = zd + vd * s - 0.5 * g0 * s * s;
+  CHECK(std::abs(sim.particles().position[0][2] - z_free) < 1e-12);
+  MESSAGE("free fall after the destruction: error " << sim.particles().position[0][2] - z_free
+                                                    << " m");
+  sim.steps(1);
+  CHECK(sim.wall_present(w1));
+  sim.run(0.3);
+  const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const double estar = m.young / (2.0 * (1.0 - m.poisson * m.poisson));
+  const double delta = std::pow(mass * g0 / (4.0 / 3.0 * estar * std::sqrt(r)), 2.0 / 3.0);
+  const double z = sim.particles().position[0][2];
+  CHECK(std::abs(z - (-5e-3 + r - delta)) < 0.02 * delta);
+  MESSAGE("rest on the created floor: overlap " << -5e-3 + r - z << " m, Hertz " << delta << " m");
+  CHECK(sim.contact_counts().second == 1);
+}
+
+// set_wall_active and remove_wall between runs: a sphere resting on a floor has no contact from
+// the forces of the first step after the floor is switched off, and then falls freely (its
+// velocity changes by exactly -g dt per step, round-off only, 1e-12 relative); switched on again
+// the wall is present, removed it cannot come back, and the sphere, falling 1 cm, rests on the
+// floor below at the same overlap as on the first (2 % of the Hertz overlap). The flag and the
+// removal are kept by a checkpoint.
+TEST_CASE("lifecycle: walls switched off, on and removed between runs") {
+  auto make = [](Sim3& sim) {
+    Material m = soft();
+    m.restitution = 0.3;
+    const auto k = sim.add_material(m);
+    WallOptions<3> o;
+    o.material = k;
+    sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, o);
+    sim.add_wall(walls::Plane{Vec3(0, 0, -0.01), Vec3::UnitZ()}, o);
+    sim.add_particle({.position = Vec3(0, 0, 2e-3), .radius = 2e-3, .material = k, .id = 0});
+  };
+  Sim3 sim(params<Sim3>(Vec3(0, 0, -g0)));
+  make(sim);
+  sim.run(0.1); // at rest on the floor
+  const double z_rest = sim.particles().position[0][2];
+  const double overlap = 2e-3 - z_rest;
+  REQUIRE(overlap > 0.0);
+  CHECK(sim.contact_counts().second == 1);
+  sim.set_wall_active(0, false);
+  sim.steps(1);
+  CHECK(!sim.wall_present(0));
+  CHECK(sim.contact_counts().second == 0);
+  const double v1 = sim.particles().velocity[0][2];
+  sim.steps(99);
+  CHECK(sim.particles().velocity[0][2] == test::approx(v1 - 99 * dt * g0).epsilon(1e-12));
+  sim.set_wall_active(0, true);
+  sim.steps(1);
+  CHECK(sim.wall_present(0));
+  sim.remove_wall(0);
+  sim.set_wall_active(0, true);
+  sim.steps(1);
+  CHECK(!sim.wall_present(0)); // removed for good
+  sim.run(0.15);
+  // it fell to the lower floor and rests there
+  CHECK(std::abs(sim.particles().position[0][2] - (z_rest - 0.01)) < 0.02 * overlap);
+  CHECK(sim.contact_counts().second == 1);
+  CHECK_THROWS_WITH_AS(sim.set_wall_active(2, false),
+                       doctest::Contains("Simulation::set_wall_active: wall index 2 is invalid"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(sim.remove_wall(7), doctest::Contains("wall index 7"), InputError);
+  // a checkpoint keeps the removal
+  const std::string path = "lifecycle_walls.ckpt";
+  io::save_checkpoint(sim, path);
+  Sim3 again(params<Sim3>(Vec3(0, 0, -g0)));
+  make(again);
+  io::load_checkpoint(again, path);
+  std::remove(path.c_str());
+  CHECK(!again.wall_present(0));
+  CHECK(again.wall_present(1));
+  again.set_wall_active(0, true);
+  again.steps(1);
+  CHECK(!again.wall_present(0));
+  CHECK(again.contact_counts().second == 1);
+}
+
+TEST_CASE("lifecycle: a wall's creation and destruction times are checked") {
+  Sim3 sim(params<Sim3>(Vec3::Zero()));
+  const auto k = sim.add_material(soft());
+  WallOptions<3> o;
+  o.name = "gate";
+  o.material = k;
+  o.creation_time = 2.0;
+  o.destruction_time = 1.0;
+  CHECK_THROWS_WITH_AS(sim.add_wall(walls::Plane{}, o),
+                       doctest::Contains("Wall 'gate': destruction_time = 1"), InputError);
+  o.creation_time = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(sim.add_wall(walls::Plane{}, o),
+                       doctest::Contains("Wall 'gate': creation_time = nan"), InputError);
+  o.creation_time = inf;
+  o.destruction_time = inf;
+  CHECK_THROWS_WITH_AS(sim.add_wall(walls::Plane{}, o), doctest::Contains("creation_time = inf"),
+                       InputError);
+  CHECK(sim.walls().empty());
 }

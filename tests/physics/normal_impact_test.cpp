@@ -392,6 +392,72 @@ TEST_CASE("Hertz with Tsuji damping: exact map, Norouzi fit and clamped rebound"
                                          << "\n  exact map, largest |de| at t_c/200: " << worst200);
 }
 
+// The elastic and viscous parts of the normal force (NormalResult::viscous; the elastic part is
+// force - viscous). A Hertz-Tsuji sphere hits a wall at 1 m/s with e = 0.5: at every step of the
+// contact the elastic part is 4/3 E* sqrt(R*) delta^(3/2) and the viscous part eta(delta) v_n,
+// to round-off (1e-12 relative); and the work of the viscous part over the impact,
+// sum(F_v v_n dt), is the kinetic energy lost, 1/2 m* v^2 (1 - e_measured^2), to 1 % (the sum
+// is a first-order quadrature at t_c/2000). The linear spring-dashpot splits the same way
+// (elastic part K delta, viscous part F - K delta).
+TEST_CASE("normal force: elastic and viscous parts, and the work of the viscous part") {
+  namespace he = normal::hertz_equivalent;
+  using M = normal::Hertz<normal::TsujiDamping>;
+  using Sim = Simulation<Sphere, search::AllPairs, Interaction<M>, integrate::VelocityVerlet>;
+  const double e = 0.5, v = 1.0;
+  const PairProperties pair = pair_of(e);
+  const double tc = he::hertz_contact_time(pair, r_eff(true), m_star, v);
+  const double dt = tc / 2000;
+  Sim sim({.time_step = dt});
+  const auto mat = sim.add_material(material<Sphere>(e, true));
+  sim.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.material = mat});
+  sim.add_particle({.position = Vec3(0, 0, radius * (1 - 1e-12)),
+                    .radius = radius,
+                    .material = mat,
+                    .velocity = Vec3(0, 0, -v)});
+  sim.initialize();
+  double work = 0.0, worst_elastic = 0.0, worst_viscous = 0.0;
+  const double k_hz = 4.0 / 3.0 * sim.pair_properties(0, 0).young_eff * std::sqrt(radius);
+  for (long k = 0; k < 100000 && (k == 0 || sim.contact_counts().second > 0); ++k) {
+    sim.step();
+    sim.for_each_contact([&](auto, auto, bool, const auto& g, const auto& r) {
+      const double elastic = r.normal.force - r.normal.viscous;
+      const double fe = k_hz * std::pow(g.overlap, 1.5);
+      worst_elastic = std::max(worst_elastic, std::abs(elastic - fe) / fe);
+      const double fv = r.normal.damping * g.normal_velocity;
+      worst_viscous =
+          std::max(worst_viscous, std::abs(r.normal.viscous - fv) / std::max(std::abs(fv), 1e-300));
+      work += r.normal.viscous * g.normal_velocity * dt;
+    });
+  }
+  const double e_measured = sim.particles().velocity[0][2] / v;
+  const double lost = 0.5 * m_star * v * v * (1.0 - e_measured * e_measured);
+  CHECK(worst_elastic < 1e-12);
+  CHECK(worst_viscous < 1e-12);
+  CHECK(work == grain::test::approx(lost).epsilon(0.01));
+  MESSAGE("Hertz-Tsuji e = " << e_measured << ": viscous work " << work << " J, energy lost "
+                             << lost << " J; elastic part error " << worst_elastic);
+
+  // the linear spring-dashpot: elastic part K delta
+  using L = normal::LinearSpringDashpot;
+  using SimL = Simulation<Sphere, search::AllPairs, Interaction<L>, integrate::VelocityVerlet>;
+  SimL lin({.time_step = dt, .contact = {.normal = {.stiffness = 1e4}}});
+  const auto ml = lin.add_material(material<Sphere>(e, true));
+  lin.add_wall(walls::Plane{Vec3::Zero(), Vec3::UnitZ()}, {.material = ml});
+  lin.add_particle({.position = Vec3(0, 0, radius * (1 - 1e-6)),
+                    .radius = radius,
+                    .material = ml,
+                    .velocity = Vec3(0, 0, -v)});
+  lin.steps(20);
+  int seen = 0;
+  lin.for_each_contact([&](auto, auto, bool, const auto& g, const auto& r) {
+    CHECK(r.normal.force - r.normal.viscous == grain::test::approx(1e4 * g.overlap).epsilon(1e-12));
+    CHECK(r.normal.viscous ==
+          grain::test::approx(r.normal.damping * g.normal_velocity).epsilon(1e-12));
+    ++seen;
+  });
+  CHECK(seen == 1);
+}
+
 TEST_CASE("Hertz with critical-ratio damping equals Tsuji with alpha = sqrt(6) xi") {
   namespace he = normal::hertz_equivalent;
   using M = normal::Hertz<normal::CriticalRatioDamping>;

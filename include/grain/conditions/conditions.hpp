@@ -16,6 +16,13 @@
 /// | fixed temperature | particles, walls | K | T = f(t) while active |
 /// | restraint | particles | - | no motion along the given directions (linear, angular) |
 ///
+/// A prescribed force, torque, heat flux or heat rate is a function of time by default; given a
+/// `Variable` (`temperature`, `speed`) it is a function of that quantity of each particle instead
+/// (the first seed's independent variable of a prescribed condition): its value is taken at the
+/// particle's own temperature [K] or speed |v| [m/s] at the start of the step's force evaluation,
+/// while its activity interval stays in time (a vector function is then active while any of its
+/// components is). A heat flux q(T) = h (T_inf - T), for example, is a convective loss.
+///
 /// Prescribed motion (the kinds "vv", "va", "av", "aa" of a linear and an angular history, each
 /// a velocity or an acceleration) overrides the dynamics of the part (linear or angular) it
 /// prescribes while its function is active (each component while its own function is active),
@@ -30,6 +37,7 @@
 /// Groups hold particle ids, which never change, and wall indices; the reserved group "all"
 /// holds every particle (including particles added or activated later) and every wall.
 
+#include <grain/conditions/variable_property.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
@@ -121,6 +129,7 @@ public:
   struct On {
     std::size_t group;
     F f;
+    Variable of = Variable::time; ///< the argument of f
   };
   struct LinearMotion {
     std::size_t group;
@@ -223,38 +232,49 @@ public:
     build_controls(id);
   }
 
+  /// The argument of a condition that is a function of a particle's quantity (not time).
+  template <class P>
+  static double argument(const P& p, std::uint32_t i, Variable of) {
+    if (of == Variable::speed) return p.velocity[i].norm();
+    if constexpr (requires { p.temperature; })
+      return p.temperature[i];
+    else
+      return std::numeric_limits<double>::quiet_NaN(); // refused where the condition is given
+  }
+
+  /// Calls add(i, value) for each member i of condition c's group while c is active at t: value
+  /// = c.f(t), or with a particle argument (`of`) the function's value at the particle's own
+  /// temperature or speed.
+  template <class P, class F, class Add>
+  void each_value(const On<F>& c, const P& p, double t, Add&& add) const {
+    if (!c.f.active(t)) return;
+    if (c.of == Variable::time) {
+      const auto v = c.f(t);
+      for (const auto i : members[c.group])
+        add(i, v);
+    } else {
+      for (const auto i : members[c.group])
+        add(i, c.f.value(argument(p, i, c.of)));
+    }
+  }
+
   /// Sums the prescribed forces and torques at time t into the force arrays.
   template <class P>
   void add_loads(P& p, double t) const {
-    for (const auto& c : forces) {
-      if (!c.f.active(t)) continue;
-      const V f = c.f(t);
-      for (const auto i : members[c.group])
-        p.force[i] += f;
-    }
-    for (const auto& c : torques) {
-      if (!c.f.active(t)) continue;
-      const A f = c.f(t);
-      for (const auto i : members[c.group])
-        p.torque[i] += f;
-    }
+    for (const auto& c : forces)
+      each_value(c, p, t, [&](std::uint32_t i, const V& f) { p.force[i] += f; });
+    for (const auto& c : torques)
+      each_value(c, p, t, [&](std::uint32_t i, const A& f) { p.torque[i] += f; });
   }
 
   /// Sums the prescribed heat fluxes (times the surface of each particle) and heat rates.
   template <class P, class Surface>
   void add_heat(P& p, double t, Surface&& surface) const {
-    for (const auto& c : heat_fluxes) {
-      if (!c.f.active(t)) continue;
-      const double q = c.f(t);
-      for (const auto i : members[c.group])
-        p.heat_rate[i] += q * surface(p.radius[i]);
-    }
-    for (const auto& c : heat_rates) {
-      if (!c.f.active(t)) continue;
-      const double q = c.f(t);
-      for (const auto i : members[c.group])
-        p.heat_rate[i] += q;
-    }
+    for (const auto& c : heat_fluxes)
+      each_value(c, p, t,
+                 [&](std::uint32_t i, double q) { p.heat_rate[i] += q * surface(p.radius[i]); });
+    for (const auto& c : heat_rates)
+      each_value(c, p, t, [&](std::uint32_t i, double q) { p.heat_rate[i] += q; });
   }
 
   /// Sets the temperatures fixed at time t (those whose function is active).

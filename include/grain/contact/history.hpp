@@ -40,6 +40,23 @@ GRAIN_INLINE std::uint64_t byte_difference(const T& a, const T& b) {
     diff |= static_cast<std::uint64_t>(x[k] ^ y[k]);
   return diff;
 }
+/// Zero if every byte of a is zero, without a branch (byte_difference against a zero value
+/// without reading one).
+template <class T>
+GRAIN_INLINE std::uint64_t any_bits(const T& a) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const auto* x = reinterpret_cast<const unsigned char*>(&a);
+  std::uint64_t bits = 0;
+  std::size_t k = 0;
+  for (; k + 8 <= sizeof(T); k += 8) {
+    std::uint64_t u;
+    std::memcpy(&u, x + k, 8);
+    bits |= u;
+  }
+  for (; k < sizeof(T); ++k)
+    bits |= static_cast<std::uint64_t>(x[k]);
+  return bits;
+}
 } // namespace detail
 
 /// The histories of the contacts of one neighbour list: `pair[e]` for the particle-pair entry e

@@ -12,10 +12,13 @@
 #if defined(__GNUC__) || defined(__clang__)
 #define GRAIN_INLINE [[gnu::always_inline]] inline
 #define GRAIN_INLINE_LAMBDA __attribute__((always_inline))
+/// Keeps a function out of line (one copy of a large inlined body, called rarely).
+#define GRAIN_NOINLINE [[gnu::noinline]]
 /// Hints that the cache line at address p will be read (w = 0) or written (w = 1) soon.
 #define GRAIN_PREFETCH(p, w) __builtin_prefetch((p), (w))
 #else
 #define GRAIN_INLINE inline
 #define GRAIN_INLINE_LAMBDA
+#define GRAIN_NOINLINE
 #define GRAIN_PREFETCH(p, w) ((void)(p))
 #endif

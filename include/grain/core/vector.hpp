@@ -6,6 +6,8 @@
 /// Angular quantities (angular velocity, torque) are a scalar in 2D (the z component) and a
 /// 3-vector in 3D; `Angular<D>` names that type, and `cross` covers every combination.
 
+#include <grain/core/config.hpp>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -61,11 +63,11 @@ inline Orientation<D> identity_orientation() {
 }
 
 /// omega x r for a 2D angular velocity (z) and an in-plane arm.
-inline Vec2 cross(double w, const Vec2& r) { return Vec2(-w * r.y(), w * r.x()); }
+GRAIN_INLINE Vec2 cross(double w, const Vec2& r) { return Vec2(-w * r.y(), w * r.x()); }
 /// omega x r in 3D.
-inline Vec3 cross(const Vec3& w, const Vec3& r) { return w.cross(r); }
+GRAIN_INLINE Vec3 cross(const Vec3& w, const Vec3& r) { return w.cross(r); }
 /// r x F (z component) in 2D.
-inline double cross(const Vec2& r, const Vec2& f) { return r.x() * f.y() - r.y() * f.x(); }
+GRAIN_INLINE double cross(const Vec2& r, const Vec2& f) { return r.x() * f.y() - r.y() * f.x(); }
 
 /// Euclidean norm of an angular quantity.
 inline double norm(double w) { return std::abs(w); }

@@ -51,7 +51,7 @@
 namespace grain::io {
 
 /// Version of the checkpoint format; files of another version are rejected.
-inline constexpr std::uint32_t checkpoint_format_version = 3;
+inline constexpr std::uint32_t checkpoint_format_version = 4;
 
 namespace detail {
 

@@ -5,6 +5,7 @@
 #include <grain/io/checkpoint.hpp>
 #include <grain/io/compare.hpp>
 #include <grain/io/console.hpp>
+#include <grain/io/contact_records.hpp>
 #include <grain/io/csv.hpp>
 #include <grain/io/mesh_file.hpp>
 #include <grain/io/state_file.hpp>

@@ -379,8 +379,9 @@ void write_particles_vtk(const Sim& sim, const std::string& path, Fields fields 
 }
 
 /// Writes the walls of a simulation as legacy VTK polydata (lines in 2D, polygons in 3D), with
-/// the wall index as cell data (and, in a thermal simulation, `conducts` and `temperature` [K];
-/// an insulated wall has conducts = 0 and temperature 0).
+/// the wall index and `present` (1 while the wall takes part in contacts, 0 while it is switched
+/// off, not yet created or removed) as cell data (and, in a thermal simulation, `conducts` and
+/// `temperature` [K]; an insulated wall has conducts = 0 and temperature 0).
 template <class Sim>
 void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size = 1.0,
                      int circle_segments = 64, VtkFormat format = VtkFormat::ascii) {
@@ -436,6 +437,7 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
   const std::size_t m = cells.size();
   o.line("CELL_DATA " + std::to_string(m));
   o.field("wall", m, [&](std::size_t c) { return static_cast<int>(owner[c]); });
+  o.field("present", m, [&](std::size_t c) { return sim.walls()[owner[c]].present ? 1 : 0; });
   if constexpr (Sim::thermal) {
     const auto& walls = sim.walls();
     o.field("conducts", m, [&](std::size_t c) { return walls[owner[c]].conducts() ? 1 : 0; });
@@ -450,7 +452,8 @@ void write_walls_vtk(const Sim& sim, const std::string& path, double plane_size 
 /// contact, from the centre of particle i to the centre of particle j, or to the contact point
 /// for a wall contact. Points are the particle centres (in storage order) followed by one point
 /// per wall contact. Cell data: `wall` (-1 for a particle pair, else the wall index), `id_i`,
-/// `id_j` (-1 for a wall), `normal_force` [N] (repulsive positive), `tangential_force` [N]
+/// `id_j` (-1 for a wall), `normal_force` [N] (repulsive positive), `normal_viscous` [N] (its
+/// dashpot part; normal_force - normal_viscous is the elastic part), `tangential_force` [N]
 /// (vector on i), `normal` (unit, from i to its partner), `force_local` [N] (the force on i in
 /// the contact frame of contact/frame.hpp: normal, tangent 1, tangent 2; 2D: normal, tangent, 0),
 /// `overlap` [m], `contact_radius` [m] (as the area model gives it to conduction) and, in a
@@ -464,7 +467,7 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
     std::size_t i, j;
     bool wall;
     grain::Vec<D> point, tangential, direction, local;
-    double normal, overlap, radius, heat;
+    double normal, viscous, overlap, radius, heat;
   };
   const auto& p = sim.particles();
   const std::size_t n = p.size();
@@ -485,7 +488,7 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
             C::area_model::radius(g, pair, r.normal, sim.contact_params(p.material[i], mj).area);
         const auto frame = ContactFrame<D>::from_normal(g.normal);
         rows.push_back({i, j, wall, g.point, r.tangent.force, g.normal, frame.to_local(r.force),
-                        r.normal.force, g.overlap, a, q});
+                        r.normal.force, r.normal.viscous, g.overlap, a, q});
       });
   std::vector<std::size_t> wall_points;
   std::vector<std::array<std::size_t, 2>> lines;
@@ -509,6 +512,7 @@ void write_contacts_vtk(const Sim& sim, const std::string& path,
     return rows[c].wall ? std::int64_t{-1} : std::int64_t{p.id[rows[c].j]};
   });
   o.field("normal_force", m, [&](std::size_t c) { return rows[c].normal; });
+  o.field("normal_viscous", m, [&](std::size_t c) { return rows[c].viscous; });
   o.field("tangential_force", m, [&](std::size_t c) { return detail::xyz(rows[c].tangential); });
   o.field("normal", m, [&](std::size_t c) { return detail::xyz(rows[c].direction); });
   o.field("force_local", m, [&](std::size_t c) { return detail::xyz(rows[c].local); });

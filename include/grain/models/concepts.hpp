@@ -38,6 +38,10 @@ struct NormalResult {
   /// offset). The tangential and rolling models limit their forces with the load force +
   /// adhesion instead of the force (see `cohesive_model`); 0 for the others.
   double adhesion = 0.0;
+  /// The viscous (dashpot) part of `force` [N], as the law applied it (after any clamping of the
+  /// total to zero); `force - viscous` is the elastic part (with adhesion, the elastic and
+  /// adhesive part). 0 for laws without damping.
+  double viscous = 0.0;
 };
 
 /// Result of a tangential-force model.

@@ -39,6 +39,7 @@ template <int D>
 void add_wall_row(const ParticleArrays<D>& p, const std::vector<Wall<D>>& walls, double reach,
                   NeighborList& list, std::size_t i) {
   for (std::uint32_t w = 0; w < walls.size(); ++w) {
+    if (!walls[w].present) continue;                   // switched off, not yet created or removed
     const auto prox = walls[w].nearest(p.position[i]); // a mesh triangle's own nearest point
     if (prox.distance < p.radius[i] + reach) list.walls.push_back(w);
   }

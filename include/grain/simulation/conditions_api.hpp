@@ -35,6 +35,13 @@ class GroupsAndConditions {
   using V = Vec<D>;
   using A = Angular<D>;
   Sim& self() { return static_cast<Sim&>(*this); }
+  /// A condition of temperature needs particles that have one.
+  static void check_argument(const char* who, const std::string& group, Variable of) {
+    if (of == Variable::temperature && !Sim::thermal)
+      throw InputError(std::string("Simulation::") + who + " (group '" + group +
+                       "'): of = temperature is invalid without a conduction model; valid "
+                       "values: time, speed (or give the Interaction a conduction model)");
+  }
   const Sim& self() const { return static_cast<const Sim&>(*this); }
 
 public:
@@ -133,31 +140,39 @@ public:
     }
   }
 
-  /// Prescribed force [N] on each particle of the group (summed with every other load).
-  void prescribe_force(const std::string& group, VectorTimeFunction<D> f) {
+  /// Prescribed force [N] on each particle of the group (summed with every other load): a
+  /// function of time, or with `of` = Variable::temperature or Variable::speed a function of each
+  /// particle's temperature [K] or speed [m/s] (its activity interval still in time).
+  void prescribe_force(const std::string& group, VectorTimeFunction<D> f,
+                       Variable of = Variable::time) {
     Sim& s = self();
-    s.cond_.forces.push_back({s.cond_.find(group), std::move(f)});
+    check_argument("prescribe_force", group, of);
+    s.cond_.forces.push_back({s.cond_.find(group), std::move(f), of});
   }
-  /// Prescribed torque [N m] on each particle of the group.
-  void prescribe_torque(const std::string& group, AngularTimeFunction<D> f) {
+  /// Prescribed torque [N m] on each particle of the group (a function of `of`, as for forces).
+  void prescribe_torque(const std::string& group, AngularTimeFunction<D> f,
+                        Variable of = Variable::time) {
     Sim& s = self();
-    s.cond_.torques.push_back({s.cond_.find(group), std::move(f)});
+    check_argument("prescribe_torque", group, of);
+    s.cond_.torques.push_back({s.cond_.find(group), std::move(f), of});
   }
-  /// Prescribed heat flux [W/m^2] into each particle of the group, times its surface.
-  void prescribe_heat_flux(const std::string& group, TimeFunction q) {
+  /// Prescribed heat flux [W/m^2] into each particle of the group, times its surface: a function
+  /// of time, or of each particle's temperature [K] or speed [m/s] (`of`).
+  void prescribe_heat_flux(const std::string& group, TimeFunction q, Variable of = Variable::time) {
     Sim& s = self();
     static_assert(Sim::thermal,
                   "grain::Simulation::prescribe_heat_flux needs a thermal simulation: "
                   "give the Interaction a conduction model");
-    s.cond_.heat_fluxes.push_back({s.cond_.find(group), std::move(q)});
+    s.cond_.heat_fluxes.push_back({s.cond_.find(group), std::move(q), of});
   }
-  /// Prescribed heat rate [W] into each particle of the group.
-  void prescribe_heat_rate(const std::string& group, TimeFunction q) {
+  /// Prescribed heat rate [W] into each particle of the group (a function of `of`, as for the
+  /// heat flux).
+  void prescribe_heat_rate(const std::string& group, TimeFunction q, Variable of = Variable::time) {
     Sim& s = self();
     static_assert(Sim::thermal,
                   "grain::Simulation::prescribe_heat_rate needs a thermal simulation: "
                   "give the Interaction a conduction model");
-    s.cond_.heat_rates.push_back({s.cond_.find(group), std::move(q)});
+    s.cond_.heat_rates.push_back({s.cond_.find(group), std::move(q), of});
   }
   /// Fixed velocity [m/s] of the group's particles (while the function is active) and walls
   /// (their translational velocity, 0 while inactive).

@@ -65,16 +65,18 @@ struct ContactPass {
       if constexpr (Contact::has_torque) s.wf_.resize(p.size());
     }
     const double half_dt = 0.5 * s.dt_;
-#pragma omp parallel for schedule(static) if (n >= parallel_threshold && !prefilled)
-    for (long i = 0; i < (prefilled ? 0 : n); ++i) {
-      if constexpr (predicts_velocity) {
-        s.vf_[i] = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
-        if constexpr (Contact::has_torque)
-          s.wf_[i] = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
+    if (!prefilled) { // (an `if` clause would still enter the OpenMP runtime every step)
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long i = 0; i < n; ++i) {
+        if constexpr (predicts_velocity) {
+          s.vf_[i] = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
+          if constexpr (Contact::has_torque)
+            s.wf_[i] = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
+        }
+        p.force[i] = V::Zero();
+        p.torque[i] = zero<A>();
+        if constexpr (thermal) p.heat_rate[i] = 0.0;
       }
-      p.force[i] = V::Zero();
-      p.torque[i] = zero<A>();
-      if constexpr (thermal) p.heat_rate[i] = 0.0;
     }
     if constexpr (predicts_velocity) {
       if (in_step && s.cond_.any_control())
@@ -198,13 +200,16 @@ struct ContactPass {
   /// The law of pair entry e, between particles i and j.
   GRAIN_INLINE static Law pair_law(const Sim& s, std::size_t e, std::size_t i, std::size_t j) {
     const auto& p = s.particles_;
-    const std::size_t k = s.table_.index(p.material[i], p.material[j]);
+    // one material: one pair type (the materials of the particles need not be read)
+    const std::size_t k = s.table_.size() == 1 ? 0 : s.table_.index(p.material[i], p.material[j]);
     return {s.vprops_.per_particle ? s.pair_cache_[e] : s.table_.properties(k),
             s.table_.resolved(k)};
   }
   /// The law of wall entry e, between particle i and wall w.
   GRAIN_INLINE static Law wall_law(const Sim& s, std::size_t e, std::size_t i, std::size_t w) {
-    const std::size_t k = s.table_.index(s.particles_.material[i], s.walls_[w].options.material);
+    const std::size_t k = s.table_.size() == 1 ? 0
+                                               : s.table_.index(s.particles_.material[i],
+                                                                s.walls_[w].options.material);
     return {s.vprops_.per_particle ? s.wall_pair_cache_[e] : s.table_.properties(k),
             s.table_.resolved(k)};
   }
@@ -448,6 +453,7 @@ struct ContactPass {
 
   /// The wall entries of row i.
   GRAIN_INLINE static void wall_contacts(Sim& s, std::size_t i) {
+    if (s.list_.wall_offsets[i] == s.list_.wall_offsets[i + 1]) return; // most rows: no wall
     auto& p = s.particles_;
     const auto& vf = s.force_velocity();
     const auto& wf = s.force_omega();
@@ -510,10 +516,33 @@ struct ContactPass {
   /// through the list (measured 1 to 5 % slower at N = 1e5 and 1e6, docs/performance.md).
   static void contact_rows(Sim& s, long begin, long end, long ahead, long span) {
     const long cold = std::max(begin, end - span); // rows with partners beyond the chunk
-    if constexpr (Contact::indirect)
+    if constexpr (Contact::indirect) {
       rows_with_gaps(s, begin, end, ahead, cold);
-    else
-      rows_collected(s, begin, end, ahead, cold);
+    } else {
+      // requests ahead only where a chunk is longer than the distance they look ahead; a blank
+      // history of zero bytes (the usual one) is told from a live one without reading the blank
+      bool zero = true;
+      if constexpr (!Contact::template stateless<D>) zero = detail::any_bits(s.blank_history_) == 0;
+      if (end - begin > ahead)
+        zero ? rows_collected<true, true>(s, begin, end, ahead, cold)
+             : rows_collected<true, false>(s, begin, end, ahead, cold);
+      else
+        zero ? rows_collected<false, true>(s, begin, end, ahead, cold)
+             : rows_collected<false, false>(s, begin, end, ahead, cold);
+    }
+  }
+
+  /// The contact laws of n touching pairs (list entries and their rows) collected by
+  /// rows_collected: the one copy of the inlined law pipeline, called once per batch.
+  GRAIN_NOINLINE static void pair_contacts(Sim& s, const std::uint32_t* entry,
+                                           const std::uint32_t* row, std::uint32_t n) {
+    for (std::uint32_t k = 0; k < n; ++k)
+      pair_contact(s, entry[k], row[k], s.list_.partners[entry[k]]);
+  }
+  /// The wall entries of rows [first, last), from the last down.
+  GRAIN_NOINLINE static void wall_rows(Sim& s, long first, long last) {
+    for (long r = last - 1; r >= first; --r)
+      wall_contacts(s, static_cast<std::size_t>(r));
   }
 
   /// contact_rows with a conduction model that conducts across gaps: row by row, each listed
@@ -549,6 +578,7 @@ struct ContactPass {
   /// of several rows, collecting the touching pairs; then the contact law for all of them in one
   /// loop (its length varies less than that of a row), then the walls of those rows. The history
   /// of a pair that no longer touches is cleared (written only if it is not blank already).
+  template <bool Ahead, bool ZeroBlank>
   GRAIN_INLINE static void rows_collected(Sim& s, long begin, long end, long ahead, long cold) {
     auto& p = s.particles_;
     const bool periodic = s.periodic_.on;
@@ -562,26 +592,29 @@ struct ContactPass {
     std::uint32_t nhit = 0;
     long last = end; // rows [i, last) have their pairs collected, their walls pending
     auto laws = [&] GRAIN_INLINE_LAMBDA { // the collected pairs
-      for (std::uint32_t k = 0; k < nhit; ++k)
-        pair_contact(s, hit_entry[k], hit_row[k], s.list_.partners[hit_entry[k]]);
+      pair_contacts(s, hit_entry, hit_row, nhit);
       nhit = 0;
     };
     auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
       laws();
-      for (long r = last - 1; r >= first; --r)
-        wall_contacts(s, static_cast<std::size_t>(r));
+      if (!s.walls_.empty()) wall_rows(s, first, last);
       last = first;
     };
     // the distance tests of entries [b, b_end) of row i; `images` (std::true_type with periodic
     // boundaries): through the nearest image of the partner. Two loops, so that the one without
     // images is the loop of a simulation without periodic boundaries.
+    // the arrays the tests read, held here (not reloaded through the vectors at each entry)
+    const std::uint32_t* partners = s.list_.partners.data();
+    const V* position = p.position.data();
+    const double* radius = p.radius.data();
+    [[maybe_unused]] History* hist = s.hist_.pair.data();
     auto test_entries = [&](auto images, std::uint32_t b, std::uint32_t b_end, std::uint32_t i,
                             const V& xi, double ri) GRAIN_INLINE_LAMBDA {
       for (auto e = b; e < b_end; ++e) {
-        const auto j = s.list_.partners[e];
-        double rs = ri + p.radius[j];
+        const auto j = partners[e];
+        double rs = ri + radius[j];
         if constexpr (Contact::cohesive) rs += s.gap_reach_; // the law acts across the gap
-        V d = p.position[j] - xi;
+        V d = position[j] - xi;
         if constexpr (decltype(images)::value) {
           if (sheared) [[unlikely]]
             d = box.nearest(d); // sliding images: the nearest one now
@@ -594,10 +627,11 @@ struct ContactPass {
         nhit += t;
         if constexpr (!Contact::template stateless<D>) {
           // no branch on the distance test: clearing a stale history is rare
-          const std::uint64_t stale = detail::byte_difference(s.hist_.pair[e], s.blank_history_) &
-                                      (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
+          const std::uint64_t live = ZeroBlank ? detail::any_bits(hist[e])
+                                               : detail::byte_difference(hist[e], s.blank_history_);
+          const std::uint64_t stale = live & (std::uint64_t{0} - static_cast<std::uint64_t>(!t));
           if (stale != 0) [[unlikely]]
-            s.hist_.pair[e] = s.blank_history_;
+            hist[e] = s.blank_history_;
         }
       }
     };
@@ -609,7 +643,7 @@ struct ContactPass {
                         test_entries(std::false_type{}, b, b_end, i, xi, ri);
                     };
     for (long ii = end - 1; ii >= begin; --ii) {
-      request_ahead(s, ii, ahead, begin, cold, end);
+      if constexpr (Ahead) request_ahead(s, ii, ahead, begin, cold, end);
       const auto i = static_cast<std::uint32_t>(ii);
       const auto r0 = s.list_.offsets[i], r1 = s.list_.offsets[i + 1];
       const V xi = p.position[i];

@@ -159,7 +159,7 @@ struct Motion {
     const bool check = s.skin_ > 0.0 && s.snapshot_.size() == p.size();
     const bool kick = s.kick_pending_;
     s.kick_pending_ = false;
-    const Fused f{dt, g, ct, cr, spins, orient, s.heat_pending_};
+    const Fused f{dt, g, ct, cr, ct != 0.0 || cr != 0.0, spins, orient, s.heat_pending_};
     s.heat_pending_ = false;
     // the two flags that change between steps select a loop compiled for them
     const double d2 =
@@ -177,6 +177,7 @@ struct Motion {
     double dt;
     V g;           ///< gravity at the end of the step [m/s^2]
     double ct, cr; ///< global damping [N s/m], [N m s]
+    bool damped;   ///< ct or cr is not 0 (else the loads start with the weight alone)
     bool spins, orient;
     bool heat; ///< the last step's temperature update was left to this pass (with its kick)
   };
@@ -201,31 +202,56 @@ struct Motion {
     return d2;
   }
   /// The fused pass for particle i (see fused_before); returns its squared displacement since the
-  /// last neighbour-list build (0 without Check), or +inf if its temperature is not finite.
+  /// last neighbour-list build (0 without Check), or +inf if its temperature is not finite. The
+  /// same arithmetic as after_one + before_one and the loads' start, on local copies (each array
+  /// read and written once).
   template <bool Kick, bool Check>
   GRAIN_INLINE static double fused_one(Sim& s, std::size_t i, const Fused& f) {
     auto& p = s.particles_;
     const double half_dt = 0.5 * f.dt;
-    if constexpr (Kick) after_one(s, i, f.dt, f.spins); // the last step's second half kick
-    before_one(s, i, f.dt, f.spins, f.orient);
-    if constexpr (predicts_velocity) {
-      const V v = p.velocity[i] + (half_dt * p.inv_mass[i]) * p.force[i];
-      s.vf_[i] = v;
-      p.force[i] = p.mass[i] * f.g - f.ct * v;
-    } else {
-      p.force[i] = p.mass[i] * f.g - f.ct * p.velocity[i];
+    const double im = p.inv_mass[i];
+    const V F = p.force[i];
+    V v = p.velocity[i];
+    {
+      const V a = F * im;
+      if constexpr (Kick) IntegratorT::after(v, a, f.dt, [](const V&, double) {});
+      V x = p.position[i];
+      IntegratorT::before(v, a, f.dt, [&](const V& u, double h) { x += u * h; });
+      p.position[i] = x;
+      p.velocity[i] = v;
     }
-    if constexpr (Contact::has_torque) {
-      if constexpr (predicts_velocity) {
-        const A w = p.omega[i] + (half_dt * p.inv_inertia[i]) * p.torque[i];
-        s.wf_[i] = w;
-        p.torque[i] = -f.cr * w;
+    if (Contact::has_torque || f.spins) { // folded at compile time for torque-making contacts
+      const double iI = p.inv_inertia[i];
+      const A T = p.torque[i];
+      A w = p.omega[i];
+      const A al = T * iI;
+      if constexpr (Kick) IntegratorT::after(w, al, f.dt, [](const A&, double) {});
+      IntegratorT::before(w, al, f.dt, [&](const A& u, double h) {
+        if (f.orient) rotate(p.orientation[i], u, h);
+      });
+      p.omega[i] = w;
+      if constexpr (Contact::has_torque) {
+        if constexpr (predicts_velocity) {
+          const A wp = w + (half_dt * iI) * T;
+          s.wf_[i] = wp;
+          p.torque[i] = f.damped ? A(-f.cr * wp) : zero<A>();
+        } else {
+          p.torque[i] = f.damped ? A(-f.cr * w) : zero<A>();
+        }
       } else {
-        p.torque[i] = -f.cr * p.omega[i];
+        // no contact torque; a prescribed torque still spins the particle, and damping acts on it
+        p.torque[i] = A(-f.cr * w);
       }
     } else {
-      // no contact torque; a prescribed torque still spins the particle, and damping acts on it
-      p.torque[i] = f.spins ? A(-f.cr * p.omega[i]) : zero<A>();
+      if (f.orient) rotate(p.orientation[i], p.omega[i], f.dt);
+      p.torque[i] = zero<A>();
+    }
+    if constexpr (predicts_velocity) {
+      const V vp = v + (half_dt * im) * F;
+      s.vf_[i] = vp;
+      p.force[i] = f.damped ? V(p.mass[i] * f.g - f.ct * vp) : V(p.mass[i] * f.g);
+    } else {
+      p.force[i] = f.damped ? V(p.mass[i] * f.g - f.ct * v) : V(p.mass[i] * f.g);
     }
     if constexpr (thermal) {
       if constexpr (Kick)

@@ -308,13 +308,46 @@ struct LifecycleStep {
       d.kept[i] = static_cast<std::uint32_t>(i);
   }
 
+  /// Sets which walls take part in contacts at time t [s] (WallOptions::active, creation and
+  /// destruction times, removal) and the next time one appears or disappears
+  /// (`next_wall_event_`). Returns true if a wall appeared or disappeared.
+  static bool update_walls(Sim& s, double t) {
+    bool changed = false;
+    double next = std::numeric_limits<double>::infinity();
+    for (auto& w : s.walls_) {
+      const bool now = w.exists_at(t);
+      changed = changed || now != w.present;
+      w.present = now;
+      if (w.removed || !w.options.active) continue;
+      if (w.options.creation_time > t)
+        next = std::min(next, w.options.creation_time);
+      else if (w.options.destruction_time > t)
+        next = std::min(next, w.options.destruction_time);
+    }
+    s.next_wall_event_ = next;
+    return changed;
+  }
+
+  /// At the start of a step whose forces are evaluated at time t: walls that appear or disappear
+  /// by then. Their contacts start or end with a rebuild of the list (the other contacts keep
+  /// their histories).
+  static void wall_events(Sim& s, double t) {
+    if (!update_walls(s, t)) return;
+    s.collect_wall_loads(); // the loads of the last step, before the list changes
+    Neighbours::rebuild(s);
+    if constexpr (thermal)
+      if (s.analysis() == Analysis::thermal) Heat::store_conductances(s);
+  }
+
   /// Removes the particles that left the bounding box, entered a sink or reached their
-  /// destruction time, and activates those whose creation time has come (Lifecycle::decide).
-  static void lifecycle(Sim& s) {
+  /// destruction time, and activates those whose creation time has come (Lifecycle::decide);
+  /// `place`: also run the insertions due now (not at the start of a run: they place their
+  /// particles after its steps).
+  static void lifecycle(Sim& s, bool place = true) {
     auto& p = s.particles_;
     const double t = s.time_;
     auto d = s.life_.decide(t, p.position, p.id, [&] { s.require_finite_state(); });
-    if (s.inserts_.active()) insert(s, d);
+    if (place && s.inserts_.active()) insert(s, d);
     if (!d.changed) return;
     s.collect_wall_loads(); // before the particles are renumbered
     if (d.removed) Neighbours::keep_particles(s, d.kept);

@@ -105,6 +105,31 @@ public:
     return static_cast<std::uint32_t>(s.walls_.size() - 1);
   }
 
+  /// Switches wall w on or off (WallOptions::active) from the next step: an inactive wall takes
+  /// no part in contacts until it is switched on again. Between runs or from a stage (from a hook
+  /// inside a step: from the step after). Throws InputError for an index that is not a wall.
+  void set_wall_active(std::uint32_t w, bool on) {
+    Sim& s = self();
+    s.check_wall(w, "set_wall_active");
+    s.walls_[w].options.active = on;
+    s.next_wall_event_ = -std::numeric_limits<double>::infinity(); // checked by the next step
+  }
+  /// Removes wall w for good from the next step: it takes no part in contacts and cannot be
+  /// switched on again; it keeps its index (groups and output refer to it).
+  void remove_wall(std::uint32_t w) {
+    Sim& s = self();
+    s.check_wall(w, "remove_wall");
+    s.walls_[w].removed = true;
+    s.next_wall_event_ = -std::numeric_limits<double>::infinity();
+  }
+  /// True if wall w took part in the contacts of the last step (or, before the first, of the
+  /// start): active, created, not destroyed, not removed.
+  bool wall_present(std::uint32_t w) const {
+    const Sim& s = self();
+    s.check_wall(w, "wall_present");
+    return s.walls_[w].present;
+  }
+
   /// Constant gravity [m/s^2].
   void set_gravity(const V& g) {
     Sim& s = self();

@@ -82,6 +82,14 @@ struct WallOptions {
   Vec<D> pivot = Vec<D>::Zero();         ///< centre of rotation [m]
   /// Temperature [K] (constant or a time function); empty = thermally insulated.
   std::optional<TimeFunction> temperature{};
+  /// Lifecycle (the first seed's wall activity): a wall takes part in contacts only while it is
+  /// active and creation_time <= t < destruction_time [s]. Outside that interval it is absent:
+  /// no contact, no heat exchange, no load; its contacts end (their histories are dropped) at the
+  /// first step it is absent, and particles meet it afresh when it appears. It keeps its index
+  /// (groups, conditions and output refer to it) and keeps moving with its velocities.
+  bool active = true;
+  double creation_time = -std::numeric_limits<double>::infinity();
+  double destruction_time = std::numeric_limits<double>::infinity();
 };
 
 template <int D>
@@ -157,6 +165,15 @@ struct Wall {
   WallOptions<D> options;
   Vec<D> pivot = Vec<D>::Zero();
   WallGeometry<D> snapshot; ///< geometry at the last neighbour-list rebuild
+  /// Takes part in contacts now (kept by the simulation from `exists_at`).
+  bool present = true;
+  /// Removed for good (Simulation::remove_wall).
+  bool removed = false;
+
+  /// True if the wall takes part in contacts at time t [s] (see WallOptions::active).
+  bool exists_at(double t) const noexcept {
+    return !removed && options.active && t >= options.creation_time && t < options.destruction_time;
+  }
   double temperature = std::numeric_limits<double>::quiet_NaN(); ///< current temperature [K]
 
   /// Velocity [m/s] and angular velocity [rad/s] as functions of time (fixed / prescribed by a
@@ -200,6 +217,14 @@ struct Wall {
   /// that does not report the contact (another triangle of the mesh does, or the nearest
   /// feature is one the mesh covers otherwise) gives an infinite distance.
   WallProximity<D> proximity(const Vec<D>& x) const {
+    // the usual flat walls without the variant's dispatch
+    if constexpr (D == 3) {
+      if (const auto* plane = std::get_if<walls::Plane>(&geometry)) [[likely]]
+        return proximity_of(*plane, x);
+    } else {
+      if (const auto* segment = std::get_if<walls::Segment>(&geometry)) [[likely]]
+        return proximity_of(*segment, x);
+    }
     return std::visit([&](const auto& g) { return proximity_of(g, x); }, geometry);
   }
 
@@ -328,6 +353,13 @@ struct Wall {
                       "finite coordinates [m]");
     if (options.temperature)
       detail::require_non_negative(obj, "temperature", *options.temperature, 0.0, "[0, inf) K");
+    detail::require(!std::isnan(options.creation_time) &&
+                        options.creation_time < std::numeric_limits<double>::infinity(),
+                    obj, "creation_time", options.creation_time, "[-inf, inf) s");
+    if (!(options.destruction_time > options.creation_time))
+      detail::require(false, obj, "destruction_time", options.destruction_time,
+                      "(creation_time, inf] = (" + detail::to_text(options.creation_time) +
+                          ", inf] s");
   }
 
   /// Default pivot of a geometry.

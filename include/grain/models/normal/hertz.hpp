@@ -84,7 +84,11 @@ struct Hertz {
     const double eta = Damping::coefficient(pair, p.damping, ks, g.r_eff, g.m_eff, g.overlap);
     double f = fe + eta * g.normal_velocity;
     if (p.no_cohesion && f < 0.0) f = 0.0;
-    return {f, 1.5 * ks, eta, 0.4 * fe * g.overlap};
+    return {.force = f,
+            .stiffness = 1.5 * ks,
+            .damping = eta,
+            .elastic_energy = 0.4 * fe * g.overlap,
+            .viscous = f - fe};
   }
 
   /// Tangent stiffness at the maximum overlap of an undamped impact at velocity v [m/s]:

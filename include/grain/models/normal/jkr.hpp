@@ -136,6 +136,7 @@ struct Jkr {
     const double a0 = std::cbrt(c * r * c * r); // snap-in radius: a^(3/2) = c R*
     NormalResult n;
     n.force = fe + eta * g.normal_velocity;
+    n.viscous = eta * g.normal_velocity;
     n.stiffness = k;
     n.damping = eta;
     n.elastic_energy = e * (energy_of(a, r, c) - energy_of(a0, r, c));

@@ -120,9 +120,14 @@ struct BasicLinearSpringDashpot {
       k = hertz_equivalent::linear_stiffness(p.equivalence, pair, g.r_eff, g.m_eff, v);
     }
     const double eta = damping(pair, p, k, g.m_eff);
-    double f = k * g.overlap + eta * g.normal_velocity;
+    const double fe = k * g.overlap;
+    double f = fe + eta * g.normal_velocity;
     if (p.no_cohesion && f < 0.0) f = 0.0;
-    return {f, k, eta, 0.5 * k * g.overlap * g.overlap};
+    return {.force = f,
+            .stiffness = k,
+            .damping = eta,
+            .elastic_energy = 0.5 * k * g.overlap * g.overlap,
+            .viscous = f - fe};
   }
 
   /// Stiffness of a contact with impact velocity v [m/s] (for the critical time step): K at
