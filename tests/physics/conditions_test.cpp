@@ -366,9 +366,8 @@ TEST_CASE("conditions: heat rates and forces that depend on temperature and spee
   // v = v0 exp(-c t/m); velocity Verlet with the force of the half-step velocity, c dt/m = 1e-3,
   // follows it to about (c dt / m) x (c t / m) = 1e-3 of v0 after 0.5 s (tolerance 2e-3).
   const double C = sphere_mass() * cap;
-  {
-    const double h = 0.01, T_inf = 350.0, T0 = 300.0, dt = 1.0;
-    const long n = 1000;
+  // a sphere alone at T0, thermal analysis with step dt
+  auto isolated_sphere = [](double dt, double T0) {
     Sim3T::Params p;
     p.time_step = dt;
     p.analysis = Analysis::thermal;
@@ -376,6 +375,12 @@ TEST_CASE("conditions: heat rates and forces that depend on temperature and spee
     Sim3T sim(p);
     const auto k = sim.add_material(grain_material());
     sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k});
+    return sim;
+  };
+  {
+    const double h = 0.01, T_inf = 350.0, T0 = 300.0, dt = 1.0;
+    const long n = 1000;
+    Sim3T sim = isolated_sphere(dt, T0);
     sim.prescribe_heat_rate("all", TimeFunction::linear(0.0, -h, T_inf), Variable::temperature);
     sim.steps(n);
     const double T = sim.particles().temperature[0];
@@ -388,13 +393,7 @@ TEST_CASE("conditions: heat rates and forces that depend on temperature and spee
   {
     const double eps = 0.8, sigma = 5.670374419e-8, a = 500.0, T0 = 1000.0, dt = 0.01;
     const long n = 8000;
-    Sim3T::Params p;
-    p.time_step = dt;
-    p.analysis = Analysis::thermal;
-    p.initial_temperature = T0;
-    Sim3T sim(p);
-    const auto k = sim.add_material(grain_material());
-    sim.add_particle({.position = {0, 0, 0}, .radius = R, .material = k});
+    Sim3T sim = isolated_sphere(dt, T0);
     sim.prescribe_heat_flux("all", TimeFunction::callable([&](double T) {
                               return eps * sigma * (std::pow(a, 4) - std::pow(T, 4));
                             }),
