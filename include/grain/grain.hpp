@@ -40,6 +40,8 @@
 #include <grain/models/convection/none.hpp>
 #include <grain/models/convection/ranz_marshall.hpp>
 #include <grain/models/convection/whitaker.hpp>
+#include <grain/models/radiation/none.hpp>
+#include <grain/models/radiation/zhou_yu_zulli.hpp>
 #include <grain/models/normal/capillary.hpp>
 #include <grain/models/normal/dmt.hpp>
 #include <grain/models/normal/hertz.hpp>

@@ -3,7 +3,8 @@
 /// `Simulation<Shape, Search, Contact, Options...>`: particles, walls, materials and the solution
 /// loop, assembled at compile time with no run-time dispatch. `Options` are optional, in any
 /// order: an integrator from grain::integrate (default velocity Verlet), a convection model from
-/// grain::convection (default none), a cell-size method (Voronoi conduction), user stages
+/// grain::convection (default none), a radiation model from grain::radiation (default none), a
+/// cell-size method (Voronoi conduction), user stages
 /// `grain::stages<S...>` whose hooks run inside the step, and per-particle fields
 /// `grain::fields<F...>` (core/stages.hpp).
 ///
@@ -13,7 +14,7 @@
 /// 3. per-contact pipeline for particle pairs and particle-wall pairs (forces, torques and, in a
 ///    thermal simulation, conductances and heat rates);
 /// 4. prescribed conditions (forces, torques, heat fluxes and rates of groups); global conditions:
-///    gravity, damping (all possibly time functions); convection; restraints remove the
+///    gravity, damping (all possibly time functions); convection; radiation; restraints remove the
 ///    restrained force and torque components;
 /// 5. integration (Euler family: particles advance, then walls move; Verlet: second half kick);
 ///    prescribed motion replaces the integrated motion of its particles; temperatures advance by
@@ -49,6 +50,7 @@
 #include <grain/integrate/integrators.hpp>
 #include <grain/interaction.hpp>
 #include <grain/models/convection/none.hpp>
+#include <grain/models/radiation/none.hpp>
 #include <grain/particles/material.hpp>
 #include <grain/particles/shape.hpp>
 #include <grain/particles/storage.hpp>
@@ -66,6 +68,7 @@
 #include <grain/simulation/pair_table.hpp>
 #include <grain/simulation/parallel.hpp>
 #include <grain/simulation/params.hpp>
+#include <grain/simulation/radiation.hpp>
 #include <grain/simulation/rebuild.hpp>
 #include <grain/simulation/setup_api.hpp>
 #include <grain/simulation/stage_hooks.hpp>
@@ -112,14 +115,16 @@ class Simulation
                 "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
                 "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
                 "convection model from grain::convection (e.g. convection::RanzMarshall), a "
+                "radiation model from grain::radiation (e.g. radiation::ZhouYuZulli), a "
                 "cell-size method from grain::cells (e.g. cells::LocalPorosity), a list of user "
                 "stages grain::stages<S...> or a list of per-particle fields grain::fields<F...>");
   static_assert((0 + ... + int(detail::is_integrator<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_convection<Options>::value)) <= 1 &&
+                    (0 + ... + int(detail::is_radiation<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_cell_method<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_stages<Options>::value)) <= 1,
                 "grain::Simulation: give at most one integrator, one convection model, one "
-                "cell-size method and one grain::stages<...> list");
+                "radiation model, one cell-size method and one grain::stages<...> list");
   static_assert((0 + ... + int(detail::is_cell_method<Options>::value)) == 0 ||
                     Contact::needs_cell_radius,
                 "grain::Simulation: a cell-size method is used only by the Voronoi conduction "
@@ -131,6 +136,7 @@ public:
       typename detail::pick<detail::is_integrator, integrate::VelocityVerlet, Options...>::type;
   using ConvectionT =
       typename detail::pick<detail::is_convection, convection::None, Options...>::type;
+  using RadiationT = typename detail::pick<detail::is_radiation, radiation::None, Options...>::type;
   using CellSizeT =
       typename detail::pick<detail::is_cell_method, cells::GlobalPorosity, Options...>::type;
   /// The user stages (grain::stages<S...>) and per-particle fields (grain::fields<F...>, those of
@@ -151,6 +157,9 @@ private:
   static_assert(ConvectionT::active == false || Contact::thermal,
                 "grain::Simulation: a convection model needs a thermal contact: give the "
                 "Interaction a conduction model such as conduction::BatchelorOBrien");
+  static_assert(RadiationT::active == false || Contact::thermal,
+                "grain::Simulation: a radiation model needs a thermal contact: give the "
+                "Interaction a conduction model such as conduction::BatchelorOBrien");
 
 public:
   static constexpr int dimension = Shape::dimension;
@@ -160,9 +169,10 @@ public:
   using contact_type = Contact;
   using integrator_type = IntegratorT;
   using convection_type = ConvectionT;
+  using radiation_type = RadiationT;
   /// True if particles carry temperatures (the contact has a conduction model).
   static constexpr bool thermal = Contact::thermal;
-  using Params = SimulationParams<D, Contact, SearchT, ConvectionT, CellSizeT>;
+  using Params = SimulationParams<D, Contact, SearchT, ConvectionT, CellSizeT, RadiationT>;
   /// Particle storage: mechanical fields, plus the thermal state in a thermal simulation.
   using Particles = std::conditional_t<thermal, ThermalParticleArrays<D>, ParticleArrays<D>>;
   using History = typename Contact::template History<D>;
@@ -210,6 +220,7 @@ public:
     detail::require_in("Simulation", "dissipation_heating", params_.dissipation_heating, 0.0, 1.0,
                        "[0, 1]");
     ConvectionT::validate(params_.convection);
+    RadiationT::validate(params_.radiation);
     CellSizeT::validate(params_.cells);
     if constexpr (Contact::indirect)
       detail::require_positive("Fluid (conduction through the fluid)", "conductivity",
@@ -293,13 +304,14 @@ public:
     time_offset_ = time_;
     step0_ = step_;
     check_materials();
-    VPStep::apply(*this, true);
-    size_search();
-    check_periodic();
+    // the walls' temperatures and speeds first: wall properties may follow them
     for (auto& w : walls_) {
       w.update_temperature(time_);
       w.update_motion(time_);
     }
+    VPStep::apply(*this, true);
+    size_search();
+    check_periodic();
     if (gravity_fn_) gravity_now_ = (*gravity_fn_)(time_);
     Life::update_walls(*this, time_);
     Neighbours::initial_build(*this);
@@ -355,6 +367,16 @@ private:
                              "range: (0, inf) J/(kg K)");
         }
         check_conductivities();
+        if constexpr (RadiationT::active) {
+          bool radiates = false;
+          for (std::size_t k = 0; k < table_.size(); ++k)
+            radiates = radiates || table_.material(k).emissivity > 0.0;
+          if (!radiates && particles_.size() > 0)
+            throw InputError(std::string("Simulation (radiation model ") + RadiationT::name +
+                             "): every material has emissivity = 0, so no particle radiates; "
+                             "valid: an emissivity in (0, 1] for the radiating materials "
+                             "(Material::emissivity), or no radiation model");
+        }
       }
     }
   }
@@ -608,8 +630,8 @@ public:
     if constexpr (Contact::cohesive) ar(gap_reach_);
     ar(static_pairs_, static_walls_, cell_pair_, cell_wall_, steps_since_cells_);
     ar(step_, steps_since_rebuild_, step0_, next_id_, gravity_now_);
-    ar(vprops_.values[0], vprops_.values[1], vprops_.values[2], vprops_.values[3],
-       vprops_.values[4], vprops_.values[5]);
+    for (auto* v : {&vprops_.values, &vprops_.wall_values})
+      ar((*v)[0], (*v)[1], (*v)[2], (*v)[3], (*v)[4], (*v)[5]);
     ar(life_.pending, life_.doomed, life_.removed_ids);
     // reading: the inserted ids join their groups again (at most the particles present or gone)
     inserts_.serialize(ar, cond_.groups, particles_.size() + life_.removed_ids.size());
@@ -856,7 +878,7 @@ private:
   /// True if heat crosses wall w: it has a temperature and its material a conductivity above 0
   /// (a wall of zero conductivity insulates, for direct and indirect conduction models alike).
   bool wall_conducts(std::size_t w) const {
-    return walls_[w].conducts() && table_.material(walls_[w].options.material).conductivity > 0.0;
+    return walls_[w].conducts() && this->wall_material(w).conductivity > 0.0;
   }
 
   /// Throws NumericalError naming the first particle with a quantity that is not finite or a
@@ -974,6 +996,7 @@ private:
   using Limits = detail::TimeStepLimits<Simulation>;
   using VPStep = detail::VariablePropertyStep<Simulation>;
   using Check = detail::StateCheck<Simulation>;
+  using Radiation = detail::RadiationStep<Simulation>;
   friend Pass;
   friend Heat;
   friend Motion;
@@ -983,6 +1006,7 @@ private:
   friend Limits;
   friend VPStep;
   friend Check;
+  friend Radiation;
   friend detail::SetUp<Simulation, D, Contact>;
   friend detail::GroupsAndConditions<Simulation, D>;
   friend detail::Observables<Simulation, D, Contact>;
@@ -1047,7 +1071,8 @@ private:
   std::int64_t next_id_ = 0;
   bool initialized_ = false;
   // variable properties
-  VariableProperties<D> vprops_; ///< properties that follow tables, per-particle values
+  VariableProperties<D> vprops_;          ///< properties that follow tables, per-particle values
+  detail::RadiationDomains<D> radiation_; ///< candidates of the radiation domains (if a model)
   std::vector<PairProperties> pair_cache_,
       wall_pair_cache_; ///< per list entry, when vprops_.per_particle
   // energy bookkeeping (SimulationParams::track_dissipation)

@@ -12,6 +12,10 @@
 // - radius R(t) of a particle resting on a plane: mass rho 4/3 pi R^3, inertia 0.4 m R^2, and the
 //   static Hertz overlap (3 m g / (4 E* sqrt(R)))^(2/3) of the grown particle;
 // - friction mu(t) of a block sliding on a plane (rotation restrained): dv/dt = -mu(t) g.
+// - friction of a wall that follows the wall's temperature, heated as a ramp: the block slides
+//   with dv/dt = -g (mu_p + mu_w(T_w(t)))/2, integrated in closed form;
+// - conductivity of a wall that follows its temperature: the heat rate of a resting particle is
+//   that of a wall material with the table's value, 4 k* a (T_w - T), k* = k_p k_w/(k_p + k_w).
 // - statistics of known velocities: counts, totals, means, extremes; free particles only.
 
 #include "../approx.hpp"
@@ -212,6 +216,102 @@ TEST_CASE("variable property: friction changing in time decelerates a sliding bl
   CHECK(1.0 - v1 == approx(0.2 * g * 0.1).epsilon(2e-2));
   CHECK(v1 - v2 == approx(0.3 * g * 0.1).epsilon(2e-2));
   CHECK(std::abs(sim.particles().omega[0].norm()) <= 1e-12);
+}
+
+TEST_CASE("variable property of a wall: friction follows the wall's temperature") {
+  using Sim = Simulation<Sphere, search::CellList,
+                         Interaction<normal::LinearSpringDashpot, tangent::SpringDashpotSlider,
+                                     rolling::None, conduction::BatchelorOBrien>>;
+  Sim::Params prm;
+  prm.time_step = 2e-6;
+  prm.gravity = Vec3(0, 0, -9.81);
+  Sim sim(prm);
+  Material mp = glass();
+  mp.young = 1e7;
+  mp.restitution = 0.3;
+  mp.friction = 0.2;
+  const auto m = sim.add_material(mp);
+  // the wall heats from 300 K at 2000 K/s; its friction goes from 0.2 at 300 K to 0.6 at 700 K
+  const auto floor = sim.add_wall(
+      walls::Plane{{0, 0, 0}, {0, 0, 1}},
+      {.material = m, .temperature = TimeFunction::table({{0.0, 300.0}, {1.0, 2300.0}})});
+  sim.add_wall_variable_property(floor, {"all", Property::friction, Variable::temperature,
+                                         Table({{300.0, 0.2}, {700.0, 0.6}})});
+  const double R = 0.005, g = 9.81;
+  const double delta =
+      std::pow(3.0 * mp.density * 4.0 / 3.0 * pi * R * R * R * g /
+                   (4.0 * mp.young / (2.0 * (1 - mp.poisson * mp.poisson)) * std::sqrt(R)),
+               2.0 / 3.0);
+  sim.add_particle({.position = {0, 0, R - delta},
+                    .radius = R,
+                    .material = m,
+                    .velocity = {1.0, 0, 0},
+                    .temperature = 300.0});
+  sim.restrain("all", {}, {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}); // a block: no rolling
+  // pair friction (0.2 + 0.2 + 0.001 (2000 t))/2 = 0.2 + t: v = 1 - g (0.2 t + t^2/2)
+  for (const double t : {0.1, 0.2}) {
+    sim.run(t - sim.time());
+    CHECK(1.0 - sim.particles().velocity[0].x() ==
+          approx(g * (0.2 * t + 0.5 * t * t)).epsilon(5e-3));
+  }
+  CHECK(sim.wall_material(floor).friction == approx(0.6).epsilon(1e-3));
+  CHECK(sim.material_of(0).friction == 0.2); // the particle keeps its own
+}
+
+TEST_CASE("variable property of a wall: conductivity follows the wall's temperature") {
+  // a particle at 300 K resting on a wall whose temperature rises from 300 K to 500 K in 1 s,
+  // conductivity k_w(T) = 1 + 4 (T - 300)/200 W/(m K); the particle keeps k_p = 1
+  auto heat_rate = [](bool variable, double t_end) {
+    ThermalSim::Params prm;
+    prm.analysis = Analysis::thermal;
+    prm.time_step = 1e-3;
+    ThermalSim sim(prm);
+    const auto m = sim.add_material(glass());
+    Material wall = glass();
+    // the constant material has the table's value at the wall temperature of t_end
+    if (!variable) wall.conductivity = 1.0 + 4.0 * (200.0 * t_end) / 200.0;
+    const auto mw = sim.add_material(wall);
+    const auto w = sim.add_wall(
+        walls::Plane{{0, 0, 0}, {0, 0, 1}},
+        {.material = mw, .temperature = TimeFunction::table({{0.0, 300.0}, {1.0, 500.0}})});
+    if (variable)
+      sim.add_wall_variable_property(std::vector<std::size_t>{w},
+                                     {"all", Property::conductivity, Variable::temperature,
+                                      Table({{300.0, 1.0}, {500.0, 5.0}})});
+    const auto id = sim.add_particle(
+        {.position = {0, 0, 0.01 - 1e-4}, .radius = 0.01, .material = m, .temperature = 300.0});
+    sim.add_group("held", {id});
+    sim.fix_temperature("held", 300.0);
+    sim.run(t_end);
+    double q = 0.0;
+    sim.for_each_contact(
+        [&](std::size_t, std::size_t, bool, const auto&, const auto&, double rate) { q += rate; });
+    return q;
+  };
+  for (const double t : {0.25, 0.5}) {
+    const double kw = 1.0 + 4.0 * (200.0 * t) / 200.0, keff = kw / (1.0 + kw);
+    const double a = std::sqrt(0.01 * 1e-4); // contact radius of the overlap with a plane
+    const double q = heat_rate(true, t);
+    CHECK(q == approx(heat_rate(false, t)).epsilon(1e-12));
+    CHECK(q == approx(4.0 * keff * a * 200.0 * t).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("variable property of a wall: bad properties, walls and variables are named") {
+  ThermalSim sim;
+  const auto m = sim.add_material(glass());
+  const auto cold = sim.add_wall(walls::Plane{{0, 0, 0}, {0, 0, 1}}, {.material = m});
+  const VariableProperty grow{"all", Property::radius, Variable::time,
+                              Table({{0.0, 0.01}, {1.0, 0.02}})};
+  CHECK_THROWS_WITH_AS(sim.add_wall_variable_property(cold, grow),
+                       doctest::Contains("property = radius is invalid for a wall"), InputError);
+  const VariableProperty stiff{"all", Property::young, Variable::temperature,
+                               Table({{300.0, 1e7}, {400.0, 2e7}})};
+  CHECK_THROWS_WITH_AS(sim.add_wall_variable_property(cold, stiff),
+                       doctest::Contains("variable = temperature is invalid for wall 0"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(sim.add_wall_variable_property(3, stiff),
+                       doctest::Contains("wall = 3 is invalid; valid range: [0, 1)"), InputError);
 }
 
 TEST_CASE("variable property: bad tables and variables are named") {

@@ -166,7 +166,7 @@ TEST_CASE("checkpoint: files that do not fit are rejected with the reason") {
     f.close();
     Sim b = make<Sim>();
     CHECK_THROWS_WITH_AS(io::load_checkpoint(b, bad),
-                         doctest::Contains("format version = 99 is invalid; valid: 4"), InputError);
+                         doctest::Contains("format version = 99 is invalid; valid: 5"), InputError);
   }
   SUBCASE("another simulation type") {
     SimEuler b = make<SimEuler>();

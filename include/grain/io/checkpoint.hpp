@@ -51,7 +51,7 @@
 namespace grain::io {
 
 /// Version of the checkpoint format; files of another version are rejected.
-inline constexpr std::uint32_t checkpoint_format_version = 4;
+inline constexpr std::uint32_t checkpoint_format_version = 5;
 
 namespace detail {
 
@@ -298,9 +298,9 @@ std::string signature() {
 inline std::vector<double> material_numbers(const std::vector<Material>& ms) {
   std::vector<double> v;
   for (const auto& m : ms)
-    v.insert(v.end(),
-             {m.density, m.young, m.poisson, m.shear, m.young_real, m.restitution, m.friction,
-              m.friction_static, m.rolling_friction, m.conductivity, m.heat_capacity});
+    v.insert(v.end(), {m.density, m.young, m.poisson, m.shear, m.young_real, m.restitution,
+                       m.friction, m.friction_static, m.rolling_friction, m.conductivity,
+                       m.heat_capacity, m.emissivity});
   return v;
 }
 

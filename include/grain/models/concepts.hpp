@@ -21,7 +21,7 @@
 namespace grain {
 
 /// The slots of `Interaction<Normal, Tangent, Rolling, Conduction, AreaCorrection>`.
-enum class Slot { normal, tangent, rolling, conduction, area, convection };
+enum class Slot { normal, tangent, rolling, conduction, area, convection, radiation };
 
 /// Result of a normal-force model (all scalars along the normal).
 struct NormalResult {
@@ -175,6 +175,28 @@ concept ConvectionModel = requires {
 }
 &&(!M::active || requires(const typename M::Params& p) {
   { M::nusselt(1.0, 1.0, p) } -> std::convertible_to<double>;
+});
+
+/// A thermal radiation model (particle to its surroundings), an optional argument of
+/// `Simulation`: `static constexpr bool active` and, if active,
+/// `double domain_radius(double R, const Params&)`, the radius [m] of the domain around a particle
+/// of radius R whose particles it sees; `double local_temperature(double porosity, double T_f,
+/// double T_mean, const Params&)`, the temperature [K] the particle sees from the porosity of the
+/// domain, the fluid temperature and the mean temperature of the other particles in it; and
+/// `double heat_rate(double emissivity, double area, double T_local, double T, const Params&)`,
+/// the heat rate [W] into a particle of surface `area` [m^2] at temperature T.
+template <class M>
+concept RadiationModel = requires {
+  { M::slot } -> std::convertible_to<Slot>;
+  requires M::slot == Slot::radiation;
+  typename M::Params;
+  { M::active } -> std::convertible_to<bool>;
+  {M::validate(std::declval<const typename M::Params&>())};
+}
+&&(!M::active || requires(const typename M::Params& p) {
+  { M::domain_radius(1.0, p) } -> std::convertible_to<double>;
+  { M::local_temperature(0.5, 300.0, 300.0, p) } -> std::convertible_to<double>;
+  { M::heat_rate(1.0, 1.0, 300.0, 300.0, p) } -> std::convertible_to<double>;
 });
 
 /// True if the conduction model `M` conducts across gaps (evaluated for pairs within its cutoff).

@@ -33,6 +33,9 @@ struct Material {
   double rolling_friction = 0.0; ///< rolling resistance coefficient, >= 0
   double conductivity = 0.0;     ///< thermal conductivity [W/(m K)], >= 0
   double heat_capacity = 0.0;    ///< specific heat capacity [J/(kg K)], >= 0
+  /// Total hemispherical emissivity of the surface, in [0, 1]: read by a radiation model
+  /// (grain::radiation); 0 = the material does not radiate.
+  double emissivity = 0.0;
 
   double shear_modulus() const { return shear > 0.0 ? shear : young / (2.0 * (1.0 + poisson)); }
   double real_young() const { return young_real > 0.0 ? young_real : young; }
@@ -54,6 +57,8 @@ struct Material {
     detail::require_non_negative(obj, "rolling_friction", rolling_friction);
     detail::require_non_negative(obj, "conductivity", conductivity);
     detail::require_non_negative(obj, "heat_capacity", heat_capacity);
+    detail::require(std::isfinite(emissivity) && emissivity >= 0.0 && emissivity <= 1.0, obj,
+                    "emissivity", emissivity, "[0, 1]");
   }
 };
 

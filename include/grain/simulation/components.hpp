@@ -15,6 +15,7 @@
 /// | `TimeStepLimits<Sim>` | time_step.hpp      | the stable limits and the step of a run         |
 /// | `VariablePropertyStep<Sim>` | variable_properties.hpp | properties that follow tables, applied |
 /// | `StateCheck<Sim>`     | state_check.hpp    | a state gone wrong, overlaps at the start       |
+/// | `RadiationStep<Sim>`  | radiation.hpp      | radiation of particles with their surroundings  |
 ///
 /// The public API is declared in `Simulation` (the run: initialize, step, steps, run, the
 /// checkpoint, the time step) and in three bases that know their derived class: `SetUp<Sim, D,
@@ -48,6 +49,8 @@ template <class Sim>
 struct VariablePropertyStep;
 template <class Sim>
 struct StateCheck;
+template <class Sim>
+struct RadiationStep;
 template <class Sim, int D, class Contact>
 class SetUp;
 template <class Sim, int D>

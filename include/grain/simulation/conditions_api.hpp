@@ -282,7 +282,61 @@ public:
                          "restitution, friction, rolling_friction, radius, density or thermal "
                          "properties");
     if (s.vprops_.add(std::move(vp), g, s.particles_.size())) s.table_.set_per_particle(true);
-    // the contact pass and the visits of contacts read per-entry properties from now on
+    per_entry_from_now(s);
+  }
+
+  /// Adds a contact property of walls (their indices from add_wall) that follows a table of the
+  /// wall's temperature, the time or the wall's translational speed: Young's modulus, Poisson
+  /// ratio, restitution, friction, rolling friction or conductivity of the wall's material, for
+  /// these walls only. Applied at initialisation and every `vp.every` steps while active, like
+  /// a particle property; the contacts with these walls take the mixed values. `vp.group` is
+  /// not used (it names particles).
+  void add_wall_variable_property(const std::vector<std::size_t>& walls, VariableProperty vp) {
+    Sim& s = self();
+    vp.validate();
+    const std::string obj =
+        std::string("VariableProperty (") + property_name(vp.property) + ", walls)";
+    if (!is_contact_property(vp.property))
+      throw InputError(obj + ": property = " + property_name(vp.property) +
+                       " is invalid for a wall (rigid, without mass or heat capacity); valid: "
+                       "young, poisson, restitution, friction, rolling_friction or conductivity");
+    if (walls.empty()) throw InputError(obj + ": walls = {} is invalid; valid: wall indices");
+    std::vector<std::uint32_t> ws;
+    for (const auto w : walls) {
+      if (w >= s.walls_.size())
+        throw InputError(obj + ": wall = " + std::to_string(w) + " is invalid; valid range: [0, " +
+                         std::to_string(s.walls_.size()) + ") (indices returned by add_wall)");
+      if (vp.variable == Variable::temperature && !s.walls_[w].conducts())
+        throw InputError(obj + ": variable = temperature is invalid for wall " + std::to_string(w) +
+                         " ('" + s.walls_[w].options.name +
+                         "'), which has no temperature; valid: time or speed (or give the wall "
+                         "a temperature)");
+      ws.push_back(static_cast<std::uint32_t>(w));
+    }
+    if constexpr (!Sim::thermal)
+      if (vp.property == Property::conductivity)
+        throw InputError(obj + ": property = conductivity is invalid without a thermal state; "
+                               "valid: mechanical properties");
+    if constexpr (Sim::contact_type::cohesive)
+      if (vp.property == Property::young || vp.property == Property::poisson)
+        throw InputError(obj +
+                         ": a variable elastic property is invalid with the adhesive "
+                         "normal model " +
+                         Sim::contact_type::normal_model::object +
+                         " (its reach across gaps is sized from the materials' E*); valid: "
+                         "restitution, friction, rolling_friction or conductivity");
+    if (s.vprops_.add_walls(std::move(vp), std::move(ws), s.particles_.size()))
+      s.table_.set_per_particle(true);
+    per_entry_from_now(s);
+  }
+  /// The same for one wall.
+  void add_wall_variable_property(std::size_t wall, VariableProperty vp) {
+    add_wall_variable_property(std::vector<std::size_t>{wall}, std::move(vp));
+  }
+
+private:
+  /// The contact pass and the visits of contacts read per-entry properties from now on.
+  static void per_entry_from_now(Sim& s) {
     if (s.vprops_.per_particle && Diagnostics<Sim>::listed_rows(s) == s.particles_.size())
       NeighbourRebuild<Sim>::refresh_pair_cache(s);
     s.initialized_ = false;

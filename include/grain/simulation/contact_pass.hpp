@@ -122,6 +122,7 @@ struct ContactPass {
   }
 
   /// Adds gravity and global damping (unless the fused pass has `prefilled` them), convection,
+  /// radiation,
   /// the prescribed loads and heat of groups, and removes the restrained components.
   static void add_global_loads(Sim& s, double t, bool prefilled) {
     auto& p = s.particles_;
@@ -155,7 +156,10 @@ struct ContactPass {
         }
       }
     }
-    if (s.heat_on_) Heat::add_convection(s);
+    if (s.heat_on_) {
+      Heat::add_convection(s);
+      RadiationStep<Sim>::add(s);
+    }
     if (s.cond_.any_prescribed()) {
       s.cond_.add_loads(p, t);
       if constexpr (thermal)

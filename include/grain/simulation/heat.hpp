@@ -175,6 +175,7 @@ struct HeatStep {
       for (const auto& c : s.static_walls_)
         p.heat_rate[c.i] += c.conductance * (s.walls_[c.j].temperature - p.temperature[c.i]);
       add_convection(s);
+      RadiationStep<Sim>::add(s);
       if (!s.cond_.heat_fluxes.empty() || !s.cond_.heat_rates.empty())
         s.cond_.add_heat(p, s.time_, [&](double r) { return s.surface_area(r); });
     }

@@ -91,6 +91,11 @@ public:
     const Sim& s = self();
     return s.vprops_.material_of(i, s.table_.material(s.particles_.material[i]));
   }
+  /// The material of wall w with its variable properties applied.
+  Material wall_material(std::size_t w) const {
+    const Sim& s = self();
+    return s.vprops_.wall_material_of(w, s.table_.material(s.walls_[w].options.material));
+  }
   /// Effective properties of the contact of particle i with particle j (wall = false) or with
   /// wall j (wall = true), with variable properties applied.
   PairProperties contact_pair(std::size_t i, std::size_t j, bool wall) const {
@@ -99,7 +104,7 @@ public:
     const auto mj = wall ? s.walls_[j].options.material : s.particles_.material[j];
     const auto k = s.table_.index(mi, mj);
     if (!s.vprops_.per_particle) return s.table_.properties(k);
-    return s.table_.mix_of(material_of(i), wall ? s.table_.material(mj) : material_of(j), k);
+    return s.table_.mix_of(material_of(i), wall ? wall_material(j) : material_of(j), k);
   }
 
   /// The view of one contact that for_each_contact passes to a one-argument callable.

@@ -9,6 +9,7 @@
 #include <grain/integrate/integrators.hpp>
 #include <grain/models/concepts.hpp>
 #include <grain/models/convection/none.hpp>
+#include <grain/models/radiation/none.hpp>
 #include <grain/particles/material.hpp>
 #include <grain/thermal/cells.hpp>
 
@@ -67,16 +68,18 @@ struct is_integrator : std::bool_constant<integrator_option<T>> {};
 template <class T>
 struct is_convection : std::bool_constant<convection_option<T>> {};
 template <class T>
+struct is_radiation : std::bool_constant<RadiationModel<T>> {};
+template <class T>
 struct is_cell_method : std::bool_constant<cells::CellSizeMethod<T>> {};
 template <class T>
 struct is_option
-    : std::bool_constant<integrator_option<T> || convection_option<T> || cells::CellSizeMethod<T> ||
-                         is_stages<T>::value || is_fields<T>::value> {};
+    : std::bool_constant<integrator_option<T> || convection_option<T> || RadiationModel<T> ||
+                         cells::CellSizeMethod<T> || is_stages<T>::value || is_fields<T>::value> {};
 } // namespace detail
 
 /// Global settings of a simulation.
 template <int D, class Contact, class SearchT, class Convection = convection::None,
-          class CellSize = cells::GlobalPorosity>
+          class CellSize = cells::GlobalPorosity, class Radiation = radiation::None>
 struct SimulationParams {
   double time_step = 0.0; ///< [s]; 0 = automatic (auto_time_step_factor x critical step)
   double auto_time_step_factor = 0.1;
@@ -105,6 +108,7 @@ struct SimulationParams {
   /// Surrounding / interstitial fluid (convection, conduction through the fluid).
   Fluid<D> fluid{};
   typename Convection::Params convection{}; ///< coefficients of the convection model
+  typename Radiation::Params radiation{};   ///< settings of the radiation model
   /// Fraction in [0, 1] of the power dissipated at contacts (viscous normal damping eta
   /// (d delta/dt)^2 and sliding friction -F_t . v_t) that heats the two partners, half each (a
   /// wall's half leaves the system). 0 (default): dissipation makes no heat. Hysteresis of

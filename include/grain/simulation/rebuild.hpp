@@ -295,9 +295,9 @@ struct NeighbourRebuild {
         s.pair_cache_[e] = s.table_.mix_of(eff[i], eff[j], s.table_.index(mi, p.material[j]));
       }
       for (const auto e : s.list_.wall_entries(i)) {
-        const auto mw = s.walls_[s.list_.walls[e]].options.material;
-        s.wall_pair_cache_[e] =
-            s.table_.mix_of(eff[i], s.table_.material(mw), s.table_.index(mi, mw));
+        const auto w = s.list_.walls[e];
+        const auto mw = s.walls_[w].options.material;
+        s.wall_pair_cache_[e] = s.table_.mix_of(eff[i], s.wall_material(w), s.table_.index(mi, mw));
       }
     }
   }

@@ -265,6 +265,16 @@ struct TimeStepLimits {
       if constexpr (ConvectionT::active)
         for (std::size_t i = 0; i < n; ++i)
           net.ground[i] += Heat::convection_conductance(s, i);
+      if constexpr (Sim::RadiationT::active) {
+        // radiation linearised at the hottest temperature present (particles, walls, fluid)
+        double t_max = s.params_.fluid.temperature;
+        for (const double t : s.particles_.temperature)
+          t_max = std::max(t_max, t);
+        for (const auto& w : s.walls_)
+          if (w.conducts()) t_max = std::max(t_max, w.temperature);
+        for (std::size_t i = 0; i < n; ++i)
+          net.ground[i] += RadiationStep<Sim>::conductance_bound(s, i, t_max);
+      }
     }
     return net;
   }

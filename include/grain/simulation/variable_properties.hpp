@@ -6,8 +6,10 @@
 /// the contact properties (Young's modulus, Poisson ratio, restitution, friction, rolling
 /// friction, conductivity; NaN = the material's); it reports what changed, and the simulation
 /// does what follows (a rebuild for a new radius, new per-contact constants for a contact
-/// property). `material_of` gives a particle's material with its values, `bounding_material`
-/// the extremes the tables reach (for the time step).
+/// property). The walls' contact properties may follow tables of the wall's temperature, the
+/// time or the wall's speed in the same way (`add_walls`, `apply_walls`). `material_of` and
+/// `wall_material_of` give a particle's or a wall's material with its values,
+/// `bounding_material` the extremes the tables reach (for the time step).
 
 #include <grain/conditions/variable_property.hpp>
 #include <grain/core/table.hpp>
@@ -36,11 +38,19 @@ struct VariableProperties {
     std::size_t group;
   };
   std::vector<On> list;
+  /// A variable property of walls and their indices.
+  struct OnWalls {
+    VariableProperty vp;
+    std::vector<std::uint32_t> walls;
+  };
+  std::vector<OnWalls> wall_list;
   /// True once a contact property varies: the contact constants are then per list entry.
   bool per_particle = false;
   /// Per-particle values of young, poisson, restitution, friction, rolling_friction and
   /// conductivity (NaN = the material's), while `per_particle`.
   std::array<std::vector<double>, 6> values;
+  /// The same per wall (NaN = the wall material's); sized when a wall property is applied.
+  std::array<std::vector<double>, 6> wall_values;
 
   /// What an update changed.
   struct Changes {
@@ -50,19 +60,20 @@ struct VariableProperties {
     bool thermal = false; ///< a heat capacity or conductance may have changed
   };
 
-  bool empty() const { return list.empty(); }
+  bool empty() const { return list.empty() && wall_list.empty(); }
 
   /// Adds a property of group `group`; `n` particles exist. Returns true if this is the first
   /// contact property (the contact constants become per particle).
   bool add(VariableProperty vp, std::size_t group, std::size_t n) {
-    bool first = false;
-    if (is_contact_property(vp.property) && !per_particle) {
-      per_particle = true;
-      for (auto& o : values)
-        o.assign(n, std::numeric_limits<double>::quiet_NaN());
-      first = true;
-    }
+    const bool first = is_contact_property(vp.property) && start_per_particle(n);
     list.push_back({std::move(vp), group});
+    return first;
+  }
+  /// Adds a (contact) property of the walls `walls`; `n` particles exist. Returns true if the
+  /// contact constants become per list entry with it.
+  bool add_walls(VariableProperty vp, std::vector<std::uint32_t> walls, std::size_t n) {
+    const bool first = start_per_particle(n);
+    wall_list.push_back({std::move(vp), std::move(walls)});
     return first;
   }
   /// A new particle: no values of its own.
@@ -80,41 +91,36 @@ struct VariableProperties {
 
   /// The material `base` of particle i with its per-particle values.
   Material material_of(std::size_t i, const Material& base) const {
-    Material m = base;
-    if (!per_particle) return m;
-    auto take = [&](const std::vector<double>& o, double& v) {
-      if (!std::isnan(o[i])) v = o[i];
-    };
-    take(values[0], m.young);
-    take(values[1], m.poisson);
-    take(values[2], m.restitution);
-    take(values[3], m.friction);
-    take(values[4], m.rolling_friction);
-    take(values[5], m.conductivity);
-    if (!std::isnan(values[0][i]) || !std::isnan(values[1][i])) m.shear = 0.0; // G from E, nu
-    // a softened modulus keeps its ratio to the real one; a static friction below the new
-    // sliding friction is raised to it by the mixing rule
-    if (!std::isnan(values[0][i]) && base.young_real > 0.0)
-      m.young_real = base.young_real * (m.young / base.young);
-    return m;
+    if (!per_particle) return base;
+    return with_values(values, i, base);
+  }
+  /// The material `base` of wall w with its values.
+  Material wall_material_of(std::size_t w, const Material& base) const {
+    if (w >= wall_values[0].size()) return base;
+    return with_values(wall_values, w, base);
   }
 
   /// The material `m` with the extremes its tables reach that bound the time step: the largest
   /// Young's modulus and conductivity, the smallest density and heat capacity.
+  /// The tables of particles and walls alike bound every material (a safe side).
   Material bounding_material(Material m) const {
-    for (const auto& v : list) {
-      const auto& y = v.vp.table->y();
-      if (v.vp.property == Property::young) {
+    auto bound = [&](const VariableProperty& vp) {
+      const auto& y = vp.table->y();
+      if (vp.property == Property::young) {
         m.young = std::max(m.young, *std::max_element(y.begin(), y.end()));
         m.shear = 0.0;
-      } else if (v.vp.property == Property::density) {
+      } else if (vp.property == Property::density) {
         m.density = std::min(m.density, *std::min_element(y.begin(), y.end()));
-      } else if (v.vp.property == Property::conductivity) {
+      } else if (vp.property == Property::conductivity) {
         m.conductivity = std::max(m.conductivity, *std::max_element(y.begin(), y.end()));
-      } else if (v.vp.property == Property::heat_capacity) {
+      } else if (vp.property == Property::heat_capacity) {
         m.heat_capacity = std::min(m.heat_capacity, *std::min_element(y.begin(), y.end()));
       }
-    }
+    };
+    for (const auto& v : list)
+      bound(v.vp);
+    for (const auto& v : wall_list)
+      bound(v.vp);
     return m;
   }
   /// The smallest radius a radius table reaches (+inf without one), and whether a radius or a
@@ -163,7 +169,84 @@ struct VariableProperties {
     return c;
   }
 
+  /// Applies the wall properties that are due at time t and step `step` (all active ones if
+  /// `all`) to the walls `w` (a wall's temperature, the time, or its translational speed).
+  template <class Walls>
+  Changes apply_walls(const Walls& w, double t, long step, bool all) {
+    Changes c;
+    if (wall_list.empty()) return c;
+    for (auto& o : wall_values)
+      o.resize(w.size(), std::numeric_limits<double>::quiet_NaN());
+    for (const auto& [vp, ws] : wall_list) {
+      if (!vp.active(t) || (!all && step % vp.every != 0)) continue;
+      c.any = true;
+      const Table& tab = *vp.table;
+      std::size_t hint = 0;
+      for (const auto k : ws) {
+        double x = t;
+        if (vp.variable == Variable::temperature) x = w[k].temperature;
+        if (vp.variable == Variable::speed) x = w[k].options.velocity.norm();
+        const double y = tab(x, hint);
+        const std::size_t slot = value_slot(vp.property);
+        if (y != wall_values[slot][k]) {
+          wall_values[slot][k] = y;
+          c.contact = true;
+          c.thermal = c.thermal || vp.property == Property::conductivity;
+        }
+      }
+    }
+    return c;
+  }
+
+  /// The position of a contact property in `values` and `wall_values`.
+  static std::size_t value_slot(Property p) {
+    switch (p) {
+    case Property::young:
+      return 0;
+    case Property::poisson:
+      return 1;
+    case Property::restitution:
+      return 2;
+    case Property::friction:
+      return 3;
+    case Property::rolling_friction:
+      return 4;
+    default:
+      return 5;
+    }
+  }
+
 private:
+  /// Per-particle values exist from the first contact property on; true at that first one.
+  bool start_per_particle(std::size_t n) {
+    if (per_particle) return false;
+    per_particle = true;
+    for (auto& o : values)
+      o.assign(n, std::numeric_limits<double>::quiet_NaN());
+    return true;
+  }
+
+  /// `base` with the values of element i in `v` (NaN = kept).
+  static Material with_values(const std::array<std::vector<double>, 6>& v, std::size_t i,
+                              const Material& base) {
+    Material m = base;
+    auto take = [&](const std::vector<double>& o, double& x) {
+      if (!std::isnan(o[i])) x = o[i];
+    };
+    take(v[0], m.young);
+    take(v[1], m.poisson);
+    take(v[2], m.restitution);
+    take(v[3], m.friction);
+    take(v[4], m.rolling_friction);
+    take(v[5], m.conductivity);
+    if (!std::isnan(v[0][i]) || !std::isnan(v[1][i])) m.shear = 0.0; // G from E, nu
+    // a softened modulus keeps its ratio to the real one; a static friction below the new
+    // sliding friction is raised to it by the mixing rule
+    if (!std::isnan(v[0][i]) && base.young_real > 0.0)
+      m.young_real = base.young_real * (m.young / base.young);
+    return m;
+  }
+
   /// The value of a table's variable for particle i at time t.
   template <class Particles>
   static double variable_of(Variable v, const Particles& p, std::size_t i, double t) {
@@ -273,8 +356,11 @@ struct VariablePropertyStep {
     s.ensure_groups();
     auto& p = s.particles_;
     const auto changes = s.vprops_.apply(p, s.shape_, s.cond_.members, s.time_, s.step_, all, only);
-    const bool radius = changes.radius, contact = changes.contact, any = changes.any;
-    const bool thermal_change = changes.thermal;
+    const auto walls =
+        only ? decltype(changes){} : s.vprops_.apply_walls(s.walls_, s.time_, s.step_, all);
+    const bool radius = changes.radius, contact = changes.contact || walls.contact;
+    const bool any = changes.any || walls.any;
+    const bool thermal_change = changes.thermal || walls.thermal;
     if (radius) {
       // a radius change moves particle surfaces: a fresh neighbour list with the new sizes
       for (double r : p.radius)
