@@ -40,8 +40,6 @@
 #include <grain/models/convection/none.hpp>
 #include <grain/models/convection/ranz_marshall.hpp>
 #include <grain/models/convection/whitaker.hpp>
-#include <grain/models/radiation/none.hpp>
-#include <grain/models/radiation/zhou_yu_zulli.hpp>
 #include <grain/models/normal/capillary.hpp>
 #include <grain/models/normal/dmt.hpp>
 #include <grain/models/normal/hertz.hpp>
@@ -50,6 +48,8 @@
 #include <grain/models/normal/jkr.hpp>
 #include <grain/models/normal/linear_spring_dashpot.hpp>
 #include <grain/models/normal/walton_braun.hpp>
+#include <grain/models/radiation/none.hpp>
+#include <grain/models/radiation/zhou_yu_zulli.hpp>
 #include <grain/models/rolling/constant.hpp>
 #include <grain/models/rolling/epsd.hpp>
 #include <grain/models/rolling/none.hpp>

@@ -813,23 +813,32 @@ public:
 private:
   /// Largest gap across which an adhesive normal model acts over all pairs of materials, with an
   /// effective radius up to the largest radius (a particle on a flat wall) [m]; 0 for the others.
-  double largest_gap_reach() const {
+  double largest_gap_reach() const { return largest_gap_reach(r_max_); }
+  /// The same for particles of radius up to r [m].
+  double largest_gap_reach(double r) const {
     if constexpr (Contact::cohesive) {
       double c = 0.0;
       const auto& all = table_.all_parameters();
       for (std::size_t k = 0; k < all.size(); ++k)
-        c = std::max(c, Contact::reach(all[k], table_.properties(k), r_max_));
+        c = std::max(c, Contact::reach(all[k], table_.properties(k), r));
       return c;
     } else {
       return 0.0;
     }
   }
   /// Largest gap across which heat flows over all pairs of materials [m].
-  double largest_cutoff() const {
-    double c = Contact::cutoff(params_.contact, r_max_);
+  double largest_cutoff() const { return largest_cutoff(r_max_); }
+  /// The same for particles of radius up to r [m].
+  double largest_cutoff(double r) const {
+    double c = Contact::cutoff(params_.contact, r);
     for (const auto& cp : table_.all_parameters())
-      c = std::max(c, Contact::cutoff(cp, r_max_));
+      c = std::max(c, Contact::cutoff(cp, r));
     return c;
+  }
+  /// The neighbour distance of a particle of radius r [m]: the largest gap across which the
+  /// models act on it (the first seed's NeighbourDistance), with heat if heat flows.
+  double neighbour_distance(double r) const {
+    return std::max(heat_on_ ? largest_cutoff(r) : 0.0, largest_gap_reach(r));
   }
   static std::string to_text(const V& v) {
     std::string s = "(";

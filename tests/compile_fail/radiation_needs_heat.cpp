@@ -11,8 +11,7 @@ using Contact = grain::Interaction<grain::normal::Hertz<>, grain::tangent::None,
 #endif
 
 std::size_t compile_fail_radiation_needs_heat() {
-  grain::Simulation<grain::Sphere, grain::search::CellList, Contact,
-                    grain::radiation::ZhouYuZulli>
+  grain::Simulation<grain::Sphere, grain::search::CellList, Contact, grain::radiation::ZhouYuZulli>
       sim;
   return sim.size();
 }

@@ -15,7 +15,9 @@
 #include <grain/models/conduction/batchelor_obrien.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #ifdef _OPENMP
@@ -640,6 +642,61 @@ TEST_CASE("indirect conduction in a simulation: gaps within the cutoff conduct, 
     sim.for_each_conductance([&](std::size_t, std::size_t, bool, double h) { H += h; });
     CHECK(H == grain::test::approx(1.63679e-4).epsilon(5e-6));
   }
+}
+
+TEST_CASE("a neighbour distance per particle: small particles drop the partners only large ones "
+          "reach, with the same results") {
+  // Spheres of 1 mm on a lattice of pitch 3.2 mm (gaps 1.2 mm) under a layer of 3 mm spheres
+  // (gaps 1 mm, 0.8 mm to the small ones), moving at up to 0.5 m/s, with surrounding-layer
+  // conduction (cutoff 0.4 x the larger radius). The search reaches skin + 1.2 mm for every pair
+  // (skin 0.2 x 3 mm); per particle, a pair of small spheres is listed only within
+  // skin + 0.4 mm, and no pair closer than its conduction cutoff is ever missing: positions and
+  // temperatures are the same bits.
+  using Contact =
+      Interaction<normal::Hertz<>, tangent::None, rolling::None, conduction::SurroundingLayer>;
+  using Sim = Simulation<Sphere, search::CellList, Contact>;
+  auto run = [](bool per_particle) {
+    Sim::Params p;
+    p.fluid.conductivity = 0.026;
+    p.time_step = 1e-6;
+    p.neighbour_distance_per_particle = per_particle;
+    Sim sim(p);
+    const auto m = sim.add_material(glass(1e7));
+    std::uint64_t seed = 12345;
+    auto uniform = [&] { // in [-1, 1)
+      seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+      return static_cast<double>(seed >> 11) * 0x1.0p-52 - 1.0;
+    };
+    auto add = [&](const Vec3& x, double r) {
+      sim.add_particle({.position = x,
+                        .radius = r,
+                        .material = m,
+                        .velocity = 0.5 * Vec3(uniform(), uniform(), uniform()),
+                        .temperature = 350.0 + 50.0 * uniform()});
+    };
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        for (int k = 0; k < 4; ++k)
+          add(Vec3(i, j, k) * 3.2e-3, 1e-3);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        add(Vec3(7e-3 * i, 7e-3 * j, 3 * 3.2e-3 + 4.8e-3), 3e-3);
+    sim.steps(3000);
+    std::vector<double> state;
+    for (std::size_t i = 0; i < sim.size(); ++i) {
+      state.push_back(sim.particles().temperature[i]);
+      for (int d = 0; d < 3; ++d)
+        state.push_back(sim.particles().position[i][d]);
+    }
+    return std::tuple{state, sim.neighbor_list().partners.size(), sim.counters().rebuilds};
+  };
+  const auto [on, listed_on, rebuilds_on] = run(true);
+  const auto [off, listed_off, rebuilds_off] = run(false);
+  CHECK(rebuilds_on == rebuilds_off);
+  CHECK(rebuilds_on > 3);
+  CHECK(on == off);
+  CHECK(10 * listed_on < 6 * listed_off); // 184 against 340
+  MESSAGE("pairs listed: " << listed_on << " per particle, " << listed_off << " for all");
 }
 
 TEST_CASE("a thermal analysis sees its contacts at rest: the collisional model gives the static "

@@ -123,6 +123,13 @@ struct SimulationParams {
   /// `orientation`) and checkpoints. False saves a rotation per particle and step (about 15 % of
   /// a settling step of spheres); the orientations then stay where they were.
   bool track_orientation = true;
+  /// Models that act across gaps (indirect conduction, adhesion) make the neighbour search reach
+  /// their largest gap, which grows with the radius. If true (default), a mixed population lists
+  /// a pair only within the skin plus the larger of the two particles' own neighbour distances
+  /// (the largest gap across which the models act on a particle of that radius): small particles
+  /// do not carry the partners of the largest ones. False lists every pair within the distance
+  /// of the largest particle. Results are the same either way.
+  bool neighbour_distance_per_particle = true;
   /// Settings of the fluid-cell size method (Voronoi conduction models only).
   typename CellSize::Params cells{};
 };

@@ -131,6 +131,8 @@ struct NeighbourRebuild {
     }
     if constexpr (!search::builtin<SearchT>) search::require_valid_list(s.list_, n, SearchT::name);
     if constexpr (excluding_fields) drop_excluded_pairs(s);
+    if constexpr (!Contact::needs_cell_radius) // the fluid cells are made from the whole list
+      if (s.params_.neighbour_distance_per_particle) drop_distant_pairs(s);
     measure_span(s);
     require_distinct_centres(s);
     // carry the histories of the old list over, by particle identity (origin_ maps the indices
@@ -300,6 +302,36 @@ struct NeighbourRebuild {
         s.wall_pair_cache_[e] = s.table_.mix_of(eff[i], s.wall_material(w), s.table_.index(mi, mw));
       }
     }
+  }
+
+  /// With models acting across gaps and particles of several sizes, removes the pairs farther
+  /// apart than the skin plus the larger of the two particles' neighbour distances (the largest
+  /// gap across which the models act on a particle of that radius). Between rebuilds no gap
+  /// shrinks by more than the skin, so no pair the models could act on is missing. Particle-wall
+  /// rows are kept as built.
+  static void drop_distant_pairs(Sim& s) {
+    const auto& p = s.particles_;
+    const std::size_t n = p.size();
+    if (n == 0 || std::max(s.cutoff_, s.gap_reach_) == 0.0) return;
+    const auto [lo, hi] = std::minmax_element(p.radius.begin(), p.radius.end());
+    if (s.neighbour_distance(*lo) == s.neighbour_distance(*hi)) return; // nothing to drop
+    std::vector<double> c(n);
+    for (std::size_t i = 0; i < n; ++i)
+      c[i] = s.skin_ + s.neighbour_distance(p.radius[i]);
+    std::uint32_t out = 0, begin = s.list_.offsets[0];
+    for (std::size_t i = 0; i + 1 < s.list_.offsets.size(); ++i) {
+      const std::uint32_t end = s.list_.offsets[i + 1];
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const auto j = s.list_.partners[e];
+        const double reach = p.radius[i] + p.radius[j] + std::max(c[i], c[j]);
+        if (s.periodic_.separation(p.position[i], p.position[j]).squaredNorm() >= reach * reach)
+          continue;
+        s.list_.partners[out++] = j;
+      }
+      begin = end;
+      s.list_.offsets[i + 1] = out;
+    }
+    s.list_.partners.resize(out);
   }
 
   /// Removes the pairs that a field excludes (two members of the same clump: rigid, they never
