@@ -41,8 +41,10 @@ inline constexpr double case_v0 = 0.1;           ///< amplitude of the initial v
 using Settle3dContact = Interaction<normal::Hertz<>, tangent::SpringDashpotSlider>;
 /// The cases' integrator is the peers' `fix nve/sphere`: velocity Verlet whose forces see the
 /// half-step velocities (integrate::VelocityVerletHalfStep).
-template <class Search = search::CellList>
-using Settle3d = Simulation<Sphere, Search, Settle3dContact, integrate::VelocityVerletHalfStep>;
+/// `Options`: further Simulation options (e.g. grain::sums<grain::by_id>).
+template <class Search = search::CellList, class... Options>
+using Settle3d =
+    Simulation<Sphere, Search, Settle3dContact, integrate::VelocityVerletHalfStep, Options...>;
 
 namespace detail {
 /// The particles and walls of settle3d in `sim` (material m): spheres on the lattice with the
@@ -83,12 +85,12 @@ void fill_settle3d(Sim& sim, std::uint32_t m, int nx, int ny, int nz, bool perio
 /// Hertz-Mindlin with e = 0.5, mu = 0.5, E = 1e7 Pa, nu = 0.3, dt = 2.5e-6 s, gravity -z.
 /// Sphere orientations are not integrated (nothing reads them; the peers do not either).
 /// `periodic_xy`: periodic along x and y instead of the 4 side planes.
-template <class Search = search::CellList>
-Settle3d<Search> make_settle3d(int nx, int ny, int nz, bool periodic_xy = false) {
-  Settle3d<Search> sim({.time_step = case_time_step,
-                        .gravity = Vec3(0, 0, -9.81),
-                        .search = {.skin = 0.1 * case_diameter},
-                        .track_orientation = false});
+template <class Search = search::CellList, class... Options>
+Settle3d<Search, Options...> make_settle3d(int nx, int ny, int nz, bool periodic_xy = false) {
+  Settle3d<Search, Options...> sim({.time_step = case_time_step,
+                                    .gravity = Vec3(0, 0, -9.81),
+                                    .search = {.skin = 0.1 * case_diameter},
+                                    .track_orientation = false});
   detail::fill_settle3d(sim, sim.add_material(case_material()), nx, ny, nz, periodic_xy);
   return sim;
 }

@@ -18,6 +18,7 @@
 #include <grain/contact/geometry.hpp>
 #include <grain/core/error.hpp>
 #include <grain/core/periodic_stage.hpp>
+#include <grain/core/sums.hpp>
 #include <grain/core/table.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>

@@ -6,7 +6,8 @@
 /// grain::convection (default none), a radiation model from grain::radiation (default none), a
 /// cell-size method (Voronoi conduction), user stages
 /// `grain::stages<S...>` whose hooks run inside the step, and per-particle fields
-/// `grain::fields<F...>` (core/stages.hpp).
+/// `grain::fields<F...>` (core/stages.hpp), and the order in which contact loads are summed,
+/// `grain::sums<grain::by_id>` (core/sums.hpp; default `grain::by_list`).
 ///
 /// One step, in this order:
 /// 1. (Verlet only) half kick and drift of particles; walls move;
@@ -45,6 +46,7 @@
 #include <grain/core/error.hpp>
 #include <grain/core/observer.hpp>
 #include <grain/core/stages.hpp>
+#include <grain/core/sums.hpp>
 #include <grain/core/time_function.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/integrate/integrators.hpp>
@@ -62,6 +64,7 @@
 #include <grain/simulation/contact_pass.hpp>
 #include <grain/simulation/diagnostics.hpp>
 #include <grain/simulation/heat.hpp>
+#include <grain/simulation/id_sums.hpp>
 #include <grain/simulation/integration.hpp>
 #include <grain/simulation/lifecycle.hpp>
 #include <grain/simulation/observables.hpp>
@@ -111,20 +114,24 @@ class Simulation
                                          detail::dimension_of<Shape>>,
       public detail::Observables<Simulation<Shape, SearchT, Contact, Options...>,
                                  detail::dimension_of<Shape>, Contact> {
-  static_assert((detail::is_option<Options>::value && ...),
-                "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
-                "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
-                "convection model from grain::convection (e.g. convection::RanzMarshall), a "
-                "radiation model from grain::radiation (e.g. radiation::ZhouYuZulli), a "
-                "cell-size method from grain::cells (e.g. cells::LocalPorosity), a list of user "
-                "stages grain::stages<S...> or a list of per-particle fields grain::fields<F...>");
+  static_assert(
+      (detail::is_option<Options>::value && ...),
+      "grain::Simulation<Shape, Search, Contact, Options...>: each option must be an "
+      "integrator from grain::integrate (e.g. integrate::VelocityVerlet), a "
+      "convection model from grain::convection (e.g. convection::RanzMarshall), a "
+      "radiation model from grain::radiation (e.g. radiation::ZhouYuZulli), a "
+      "cell-size method from grain::cells (e.g. cells::LocalPorosity), a list of user "
+      "stages grain::stages<S...>, a list of per-particle fields grain::fields<F...> or a "
+      "summation order grain::sums<grain::by_id>");
   static_assert((0 + ... + int(detail::is_integrator<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_convection<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_radiation<Options>::value)) <= 1 &&
                     (0 + ... + int(detail::is_cell_method<Options>::value)) <= 1 &&
-                    (0 + ... + int(detail::is_stages<Options>::value)) <= 1,
+                    (0 + ... + int(detail::is_stages<Options>::value)) <= 1 &&
+                    (0 + ... + int(detail::is_sums<Options>::value)) <= 1,
                 "grain::Simulation: give at most one integrator, one convection model, one "
-                "radiation model, one cell-size method and one grain::stages<...> list");
+                "radiation model, one cell-size method, one grain::stages<...> list and one "
+                "grain::sums<...> order");
   static_assert((0 + ... + int(detail::is_cell_method<Options>::value)) == 0 ||
                     Contact::needs_cell_radius,
                 "grain::Simulation: a cell-size method is used only by the Voronoi conduction "
@@ -139,6 +146,10 @@ public:
   using RadiationT = typename detail::pick<detail::is_radiation, radiation::None, Options...>::type;
   using CellSizeT =
       typename detail::pick<detail::is_cell_method, cells::GlobalPorosity, Options...>::type;
+  /// The summation order of the contact loads (grain::sums<grain::by_list> unless given).
+  using SumsT = typename detail::pick<detail::is_sums, sums<by_list>, Options...>::type;
+  /// True if each particle sums its pair loads in ascending partner id (grain::sums<by_id>).
+  static constexpr bool sums_by_id = std::is_same_v<typename SumsT::order, by_id>;
   /// The user stages (grain::stages<S...>) and per-particle fields (grain::fields<F...>, those of
   /// the options first, then those the stages declare).
   using StageList = typename detail::pick<detail::is_stages, stages<>, Options...>::type;
@@ -157,6 +168,11 @@ private:
   static_assert(ConvectionT::active == false || Contact::thermal,
                 "grain::Simulation: a convection model needs a thermal contact: give the "
                 "Interaction a conduction model such as conduction::BatchelorOBrien");
+  static_assert(!sums_by_id || (!Contact::needs_cell_radius && !RadiationT::active),
+                "grain::Simulation: grain::sums<grain::by_id> does not yet cover the fluid cells "
+                "of the Voronoi conduction models nor the domains of a radiation model (they sum "
+                "over neighbours in search order); use grain::sums<grain::by_list> (the default) "
+                "with them");
   static_assert(RadiationT::active == false || Contact::thermal,
                 "grain::Simulation: a radiation model needs a thermal contact: give the "
                 "Interaction a conduction model such as conduction::BatchelorOBrien");
@@ -625,6 +641,8 @@ public:
       ar(w.geometry, w.snapshot, w.pivot, w.options.velocity, w.options.omega, w.temperature,
          w.options.active, w.removed, w.present);
     ar(list_.offsets, list_.partners, list_.wall_offsets, list_.walls, list_.max_span);
+    id_sums_.invalidate();
+    ++list_generation_;
     ar(hist_.pair, hist_.wall, snapshot_);
     ar(dt_, time_, time_offset_, end_time_, r_max_, skin_, reach_, cutoff_, heat_on_);
     if constexpr (Contact::cohesive) ar(gap_reach_);
@@ -887,7 +905,9 @@ private:
   /// True if heat crosses wall w: it has a temperature and its material a conductivity above 0
   /// (a wall of zero conductivity insulates, for direct and indirect conduction models alike).
   bool wall_conducts(std::size_t w) const {
-    return walls_[w].conducts() && this->wall_material(w).conductivity > 0.0;
+    return walls_[w].conducts() &&
+           vprops_.wall_conductivity_of(
+               w, table_.material(walls_[w].options.material).conductivity) > 0.0;
   }
 
   /// Throws NumericalError naming the first particle with a quantity that is not finite or a
@@ -1024,7 +1044,7 @@ private:
   typename FieldStore::type fields_{};
   /// What the particles exerted on the walls at the last force evaluation (summed lazily).
   WallLoads<D> wall_loads_;
-  void collect_wall_loads() const { wall_loads_.collect(list_, particles_.id, walls_); }
+  void collect_wall_loads() const { wall_loads_.collect(list_, particles_.id, walls_, sums_by_id); }
 
   Params params_;
   Shape shape_;
@@ -1034,7 +1054,11 @@ private:
   std::vector<Wall<D>> walls_;
   NeighborList list_;
   using Histories = ContactHistories<History>;
-  Histories hist_;            ///< the contact histories of the list entries
+  Histories hist_; ///< the contact histories of the list entries
+  /// With sums by id: the pair loads per list entry and each particle's entries by partner id.
+  [[no_unique_address]] std::conditional_t<
+      sums_by_id, detail::IdSums<D, Contact::has_torque, thermal>, detail::NoIdSums>
+      id_sums_;
   bool kick_pending_ = false; ///< the last step's second half kick is left to the next step
   bool heat_pending_ = false; ///< the last step's temperature update is left to the next step
   History blank_history_{};   ///< a value-initialised history (what a pair without contact has)
@@ -1062,6 +1086,8 @@ private:
   /// The force loop's list span with periodic boundaries, and the rows paired across the slowest
   /// axis of the order (NeighbourRebuild::measure_span).
   std::uint32_t near_span_ = 0, ring_rows_ = 0, ring_from_ = 0;
+  /// The first far entry (paired across the slowest axis) of each of the rows [0, ring_rows_).
+  std::vector<std::uint32_t> ring_split_;
   /// The periodic image of each list entry's partner, and the shifts of the 3^D images
   /// (NeighbourRebuild::measure_span).
   std::vector<std::uint8_t> image_code_;
@@ -1103,6 +1129,9 @@ private:
   /// index k (`none` for a new one); empty = unchanged indices.
   std::vector<std::uint32_t> origin_;
   RunCounters counters_;
+  /// Counts the neighbour lists made (and read from checkpoints): what was made from a list
+  /// notes the count it was made for.
+  std::uint64_t list_generation_ = 0;
   // state checks (StateCheck)
   std::vector<std::int64_t> fresh_ids_; ///< particles added since the last start
   std::size_t checked_walls_ = 0;       ///< walls below this index were there at the last start

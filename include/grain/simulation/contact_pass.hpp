@@ -42,6 +42,8 @@ struct ContactPass {
   static constexpr double prefetch_span_bytes = Sim::prefetch_span_bytes;
   static constexpr double row_bytes = Sim::row_bytes;
   using Heat = HeatStep<Sim>;
+  /// Pair loads kept per entry and summed per particle in ascending partner id (sums<by_id>).
+  static constexpr bool by_id = Sim::sums_by_id;
 
   /// Forces, torques (and heat rates) at time t; `in_step` = called by step() (prescribed motion
   /// of the step is known): the loads start from zero (or from the fused pass's gravity and
@@ -87,20 +89,33 @@ struct ContactPass {
   }
 
   /// The loads of every entry of the neighbour list, in deterministic chunks of rows
-  /// (detail::run_paired_chunks: the same bits for any number of threads).
+  /// (detail::run_paired_chunks: the same bits for any number of threads). With sums by id, the
+  /// rows keep their pair loads per entry (any schedule), and each particle then sums its own.
   static void contact_loads(Sim& s) {
     const long n = static_cast<long>(s.particles_.size());
     const auto& list = s.list_;
+    if constexpr (by_id) {
+      s.id_sums_.prepare(list, s.particles_.id, parallel_threshold);
+      const long span = static_cast<long>(list.max_span);
+      const long ahead =
+          static_cast<double>(span) * row_bytes > prefetch_span_bytes ? prefetch_rows : n;
+      const long chunk = std::max((n + 63) / 64, 1L);
+      const long nchunks = (n + chunk - 1) / chunk;
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+      for (long c = 0; c < nchunks; ++c)
+        contact_rows(s, c * chunk, std::min(n, (c + 1) * chunk), ahead, span);
+      sum_by_id(s);
+      return;
+    }
     // deterministic chunks: the chunk length depends on N and the list span only. At least a
     // span (the rows of chunk c then write to chunks c and c + 1 only); two spans while that
     // leaves 16 chunks or more (the rows of a chunk's last span have partners beyond it, which
     // come from memory; fewer such rows measured 2 to 4 % faster at N = 1e5); at most 64 chunks.
     // periodic boundaries: the pairs across the slowest axis of the order (rows [0, ring_rows_)
-    // to rows [ring_from_, N)) are left out of the span; chunk 0, which holds those rows, runs
-    // before the chunks that write to the same rows
+    // to rows [ring_from_, N)) are left out of the span and of the chunks: they are evaluated
+    // after them (ring_contacts)
     const long span = static_cast<long>(s.periodic_.on ? s.near_span_ : list.max_span);
-    const long ring = s.periodic_.on ? static_cast<long>(s.ring_rows_) : 0;
-    long chunk = std::max({span, ring, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
+    long chunk = std::max({span, std::min(2 * span, (n + 15) / 16), (n + 63) / 64, 1L});
     // periodic boundaries: the pairs across a periodic middle axis lie about two slabs apart,
     // which leaves few chunks; an even number of them (from 6 up) shares out evenly between
     // two threads (measured 6 % faster at N = 1e4 on two threads)
@@ -118,7 +133,28 @@ struct ContactPass {
     };
     detail::run_paired_chunks(
         n, chunk, work, [&](long b, long e) { contact_rows(s, b, e, ahead, span); },
-        n >= parallel_threshold, ring > 0 ? static_cast<long>(s.ring_from_) : -1);
+        n >= parallel_threshold);
+    if (s.ring_rows_ > 0) ring_contacts(s);
+  }
+
+  /// Sums by id: adds to each particle's loads (its start value and its walls) the loads of its
+  /// pairs, in ascending partner id.
+  static void sum_by_id(Sim& s) {
+    auto& p = s.particles_;
+    const long n = static_cast<long>(p.size());
+    const bool heat = thermal && s.heat_on_;
+#pragma omp parallel for schedule(static) if (n >= parallel_threshold)
+    for (long kk = 0; kk < n; ++kk) {
+      const auto k = static_cast<std::size_t>(kk);
+      V f = p.force[k];
+      A t = p.torque[k];
+      double q = 0.0;
+      if constexpr (thermal) q = p.heat_rate[k];
+      s.id_sums_.add(k, f, t, q, heat);
+      p.force[k] = f;
+      p.torque[k] = t;
+      if constexpr (thermal) p.heat_rate[k] = q;
+    }
   }
 
   /// Adds gravity and global damping (unless the fused pass has `prefilled` them), convection,
@@ -230,6 +266,16 @@ struct ContactPass {
                                 cell_radius);
   }
 
+  /// The particles of the pair of row i and partner j in the order its law and history take them:
+  /// (i, j), or with sums by id the particle of lower id first.
+  GRAIN_INLINE static std::pair<std::size_t, std::size_t> oriented(const Sim& s, std::size_t i,
+                                                                   std::size_t j) {
+    if constexpr (by_id)
+      if (s.particles_.id[j] < s.particles_.id[i]) return {j, i};
+    (void)s;
+    return {i, j};
+  }
+
   /// Geometry of pair (i, j) if it touches, with the velocities `v`, `w` (by default the
   /// particles' own).
   GRAIN_INLINE static bool touching_pair(const Sim& s, std::size_t i, std::size_t j,
@@ -245,17 +291,27 @@ struct ContactPass {
     return touching_pair(s, i, j, g, s.particles_.velocity, s.particles_.omega);
   }
   /// Geometry of pair (i, j), which touches, with the velocities `v`, `w`.
+  /// `entry` (if >= 0): the list entry of the pair, whose partner's image was found at the list
+  /// build (image_code_): its shift is taken off instead of finding the nearest image again (the
+  /// same bits).
   GRAIN_INLINE static void pair_geometry_of(const Sim& s, std::size_t i, std::size_t j,
                                             ContactGeometry<D>& g, const std::vector<V>& v,
-                                            const std::vector<A>& w) {
+                                            const std::vector<A>& w, long entry = -1) {
     const auto& p = s.particles_;
     V d = p.position[j] - p.position[i];
     const V* vj = &v[j];
     V vj_image;
     if (s.periodic_.on) [[unlikely]] { // the nearest image of j
-      if (!s.periodic_.sheared()) [[likely]]
+      if (!s.periodic_.sheared() && entry >= 0) [[likely]] {
+        // the shift is that of the row's partner: taken off x_partner - x_row, added to the other
+        const V& shift = s.image_shift_[s.image_code_[static_cast<std::size_t>(entry)]];
+        if (i < j) // (the row is the lower index of a half list)
+          d -= shift;
+        else
+          d += shift;
+      } else if (!s.periodic_.sheared()) {
         d = PeriodicBox<D>::minimum_image(d, s.periodic_.wrap_length, s.periodic_.wrap_inverse);
-      else if (nearest_image(s, d, v[j], vj_image)) // out of line: a sliding image
+      } else if (nearest_image(s, d, v[j], vj_image)) // out of line: a sliding image
         vj = &vj_image;
     }
     const double dist = std::sqrt(d.squaredNorm());
@@ -408,14 +464,17 @@ struct ContactPass {
     }
   }
 
-  /// The contact of list entry e between particles i and j (j > i), which touch: geometry,
-  /// contact law, loads added to both (and heat).
-  GRAIN_INLINE static void pair_contact(Sim& s, std::uint32_t e, std::size_t i, std::uint32_t j) {
+  /// The contact of list entry e between particles `row` and `partner` (partner > row), which
+  /// touch: geometry, contact law, loads added to both (and heat); with sums by id, kept in the
+  /// entry's load.
+  GRAIN_INLINE static void pair_contact(Sim& s, std::uint32_t e, std::size_t row,
+                                        std::uint32_t partner) {
     auto& p = s.particles_;
     const auto& vf = s.force_velocity();
     const auto& wf = s.force_omega();
+    const auto [i, j] = oriented(s, row, partner);
     ContactGeometry<D> gc; // local to the contact: kept in registers
-    pair_geometry_of(s, i, j, gc, vf, wf);
+    pair_geometry_of(s, i, j, gc, vf, wf, static_cast<long>(e));
     if constexpr (predicts_velocity && Contact::has_torque) {
       V image;
       set_slip_velocity<D>(gc, p.velocity[i], partner_velocity(s, i, j, p.velocity, image),
@@ -424,17 +483,27 @@ struct ContactPass {
     const Law law = pair_law(s, e, i, j);
     History& h = s.hist(s.hist_.pair, e);
     auto r = evaluate(s, gc, law, h);
-    p.force[i] += r.force;
-    p.force[j] -= r.force;
-    if constexpr (Contact::has_torque) {
-      p.torque[i] += r.torque_i;
-      p.torque[j] += r.torque_j;
+    if constexpr (by_id) {
+      auto [si, sj] = s.id_sums_.shares_of(e, i == row);
+      si.force = r.force;
+      sj.force = -r.force; // (adding it is subtracting r.force: the same bits)
+      if constexpr (Contact::has_torque) {
+        si.torque = r.torque_i;
+        sj.torque = r.torque_j;
+      }
+    } else {
+      p.force[i] += r.force;
+      p.force[j] -= r.force;
+      if constexpr (Contact::has_torque) {
+        p.torque[i] += r.torque_i;
+        p.torque[j] += r.torque_j;
+      }
     }
     if (s.tracking_) {
       V image;
       double work = r.force.dot(vf[i] - partner_velocity(s, i, j, vf, image));
       if constexpr (Contact::has_torque) work += dot(r.torque_i, wf[i]) + dot(r.torque_j, wf[j]);
-      s.work_rows_[i] += work;
+      s.work_rows_[row] += work;
     }
     if constexpr (thermal) {
       if (s.heat_on_) {
@@ -449,8 +518,14 @@ struct ContactPass {
         }
         const double q = H * (p.temperature[j] - p.temperature[i]);
         const double w = Heat::dissipation_heat(s, gc, r);
-        p.heat_rate[i] += q + w;
-        p.heat_rate[j] += w - q;
+        if constexpr (by_id) {
+          auto [si, sj] = s.id_sums_.shares_of(e, i == row);
+          si.heat = q + w;
+          sj.heat = w - q;
+        } else {
+          p.heat_rate[i] += q + w;
+          p.heat_rate[j] += w - q;
+        }
       }
     }
   }
@@ -521,19 +596,51 @@ struct ContactPass {
   static void contact_rows(Sim& s, long begin, long end, long ahead, long span) {
     const long cold = std::max(begin, end - span); // rows with partners beyond the chunk
     if constexpr (Contact::indirect) {
-      rows_with_gaps(s, begin, end, ahead, cold);
+      rows_with_gaps<false>(s, begin, end, ahead, cold);
     } else {
       // requests ahead only where a chunk is longer than the distance they look ahead; a blank
       // history of zero bytes (the usual one) is told from a live one without reading the blank
       bool zero = true;
       if constexpr (!Contact::template stateless<D>) zero = detail::any_bits(s.blank_history_) == 0;
       if (end - begin > ahead)
-        zero ? rows_collected<true, true>(s, begin, end, ahead, cold)
-             : rows_collected<true, false>(s, begin, end, ahead, cold);
+        zero ? rows_collected<true, true, false>(s, begin, end, ahead, cold)
+             : rows_collected<true, false, false>(s, begin, end, ahead, cold);
       else
-        zero ? rows_collected<false, true>(s, begin, end, ahead, cold)
-             : rows_collected<false, false>(s, begin, end, ahead, cold);
+        zero ? rows_collected<false, true, false>(s, begin, end, ahead, cold)
+             : rows_collected<false, false, false>(s, begin, end, ahead, cold);
     }
+  }
+
+  /// Periodic boundaries: the pairs across the slowest axis of the order (the far entries of
+  /// rows [0, ring_rows_), whose partners lie in rows [ring_from_, N)), after the chunks, on one
+  /// thread (about a layer of cells of pairs): every particle receives them after the pairs of
+  /// the chunks, for any number of threads.
+  static void ring_contacts(Sim& s) {
+    const long rows = static_cast<long>(s.ring_rows_), n = static_cast<long>(s.particles_.size());
+    if constexpr (Contact::indirect) {
+      rows_with_gaps<true>(s, 0, rows, n, 0);
+    } else {
+      bool zero = true;
+      if constexpr (!Contact::template stateless<D>) zero = detail::any_bits(s.blank_history_) == 0;
+      zero ? rows_collected<false, true, true>(s, 0, rows, n, 0)
+           : rows_collected<false, false, true>(s, 0, rows, n, 0);
+    }
+  }
+
+  /// The entries a pass over row i evaluates: all of them, or with periodic boundaries for a
+  /// row paired across the slowest axis of the order (i < ring_rows_), those before its far
+  /// entries (`Ring` false: the chunks) or its far entries (`Ring` true: ring_contacts).
+  template <bool Ring>
+  GRAIN_INLINE static std::pair<std::uint32_t, std::uint32_t> row_entries(const Sim& s,
+                                                                          std::uint32_t i) {
+    std::uint32_t r0 = s.list_.offsets[i], r1 = s.list_.offsets[i + 1];
+    if constexpr (Ring) {
+      r0 = s.ring_split_[i];
+    } else if constexpr (!by_id) { // (sums by id: the chunks evaluate every entry)
+      if (i < s.ring_rows_) [[unlikely]]
+        r1 = s.ring_split_[i];
+    }
+    return {r0, r1};
   }
 
   /// The contact laws of n touching pairs (list entries and their rows) collected by
@@ -550,7 +657,9 @@ struct ContactPass {
   }
 
   /// contact_rows with a conduction model that conducts across gaps: row by row, each listed
-  /// pair either touches (the contact law) or conducts across its gap.
+  /// pair either touches (the contact law) or conducts across its gap (`Ring`: the far entries
+  /// of ring_contacts, without the walls).
+  template <bool Ring>
   GRAIN_INLINE static void rows_with_gaps(Sim& s, long begin, long end, long ahead, long cold) {
     auto& p = s.particles_;
     ContactGeometry<D> g;
@@ -558,23 +667,38 @@ struct ContactPass {
     for (long ii = end - 1; ii >= begin; --ii) {
       request_ahead(s, ii, ahead, begin, cold, end);
       const auto i = static_cast<std::size_t>(ii);
-      for (const auto e : s.list_.pair_entries(i)) {
+      const auto [r0, r1] = row_entries<Ring>(s, static_cast<std::uint32_t>(i));
+      for (auto e = r0; e < r1; ++e) {
         const auto j = s.list_.partners[e];
         double rs = p.radius[i] + p.radius[j];
         if constexpr (Contact::cohesive) rs += s.gap_reach_; // the law acts across the gap
         if (s.separation(i, j).squaredNorm() < rs * rs) {
+          if constexpr (by_id) s.id_sums_.acts_now(e, s.id_sums_.contact);
           pair_contact(s, e, i, j); // the geometry is made there, once
           continue;
         }
         if constexpr (!Contact::template stateless<D>) s.hist_.pair[e] = History{};
         if (heat) {
-          const double H = Heat::gap_pair_conductance(s, i, j, e, g);
-          const double q = H * (p.temperature[j] - p.temperature[i]);
-          p.heat_rate[i] += q;
-          p.heat_rate[j] -= q;
+          const auto [a, b] = oriented(s, i, j);
+          const double H = Heat::gap_pair_conductance(s, a, b, e, g);
+          const double q = H * (p.temperature[b] - p.temperature[a]);
+          if constexpr (by_id) {
+            // a pair out of reach (H = 0) keeps zero shares
+            s.id_sums_.acts_now(e, H != 0.0 ? s.id_sums_.heat_only : s.id_sums_.nothing);
+            if (H != 0.0) {
+              auto [sa, sb] = s.id_sums_.shares_of(e, a == i);
+              sa.heat = q;
+              sb.heat = -q;
+            }
+          } else {
+            p.heat_rate[a] += q;
+            p.heat_rate[b] -= q;
+          }
+        } else if constexpr (by_id) {
+          s.id_sums_.acts_now(e, s.id_sums_.nothing);
         }
       }
-      wall_contacts(s, i);
+      if constexpr (!Ring) wall_contacts(s, i);
     }
   }
 
@@ -582,7 +706,8 @@ struct ContactPass {
   /// of several rows, collecting the touching pairs; then the contact law for all of them in one
   /// loop (its length varies less than that of a row), then the walls of those rows. The history
   /// of a pair that no longer touches is cleared (written only if it is not blank already).
-  template <bool Ahead, bool ZeroBlank>
+  /// `Ring`: the far entries of ring_contacts, without the walls.
+  template <bool Ahead, bool ZeroBlank, bool Ring>
   GRAIN_INLINE static void rows_collected(Sim& s, long begin, long end, long ahead, long cold) {
     auto& p = s.particles_;
     const bool periodic = s.periodic_.on;
@@ -601,7 +726,7 @@ struct ContactPass {
     };
     auto flush = [&](long first) GRAIN_INLINE_LAMBDA {
       laws();
-      if (!s.walls_.empty()) wall_rows(s, first, last);
+      if (!Ring && !s.walls_.empty()) wall_rows(s, first, last);
       last = first;
     };
     // the distance tests of entries [b, b_end) of row i; `images` (std::true_type with periodic
@@ -612,6 +737,8 @@ struct ContactPass {
     const V* position = p.position.data();
     const double* radius = p.radius.data();
     [[maybe_unused]] History* hist = s.hist_.pair.data();
+    [[maybe_unused]] std::uint8_t* acts = nullptr;
+    if constexpr (by_id) acts = s.id_sums_.acts.data();
     auto test_entries = [&](auto images, std::uint32_t b, std::uint32_t b_end, std::uint32_t i,
                             const V& xi, double ri) GRAIN_INLINE_LAMBDA {
       for (auto e = b; e < b_end; ++e) {
@@ -626,6 +753,12 @@ struct ContactPass {
             d -= image_shift[image_code[e]]; // the same bits as PeriodicBox::minimum_image
         }
         const bool t = d.squaredNorm() < rs * rs;
+        if constexpr (by_id) { // contact (1) or nothing (0); shares cleared when a pair parts
+          const std::uint8_t was = acts[e], now = static_cast<std::uint8_t>(t);
+          acts[e] = now;
+          if (was > now) [[unlikely]]
+            s.id_sums_.clear(e);
+        }
         hit_entry[nhit] = e;
         hit_row[nhit] = i;
         nhit += t;
@@ -649,7 +782,7 @@ struct ContactPass {
     for (long ii = end - 1; ii >= begin; --ii) {
       if constexpr (Ahead) request_ahead(s, ii, ahead, begin, cold, end);
       const auto i = static_cast<std::uint32_t>(ii);
-      const auto r0 = s.list_.offsets[i], r1 = s.list_.offsets[i + 1];
+      const auto [r0, r1] = row_entries<Ring>(s, i);
       const V xi = p.position[i];
       const double ri = p.radius[i];
       if (nhit + (r1 - r0) > capacity) {

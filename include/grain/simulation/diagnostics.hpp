@@ -69,9 +69,9 @@ struct Diagnostics {
     };
     for (std::size_t i = 0; i < listed_rows(s); ++i) {
       for (const auto e : s.list_.pair_entries(i)) {
-        const auto j = s.list_.partners[e];
-        if (!Pass::acting_pair(s, i, j, g)) continue;
-        visit(i, j, false, Pass::pair_law(s, e, i, j), Sim::history_at(s.hist_.pair, e),
+        const auto [a, b] = Pass::oriented(s, i, s.list_.partners[e]);
+        if (!Pass::acting_pair(s, a, b, g)) continue;
+        visit(a, b, false, Pass::pair_law(s, e, a, b), Sim::history_at(s.hist_.pair, e),
               Heat::cell_radius_pair(s, e));
       }
       for (const auto e : s.list_.wall_entries(i)) {
@@ -103,14 +103,14 @@ struct Diagnostics {
       };
       for (std::size_t i = 0; i < listed_rows(s); ++i) {
         for (const auto e : s.list_.pair_entries(i)) {
-          const auto j = s.list_.partners[e];
+          const auto [a, b] = Pass::oriented(s, i, s.list_.partners[e]);
           double H = 0.0;
-          if (Pass::touching_pair(s, i, j, g))
-            H = touching(Pass::pair_law(s, e, i, j), Sim::history_at(s.hist_.pair, e),
+          if (Pass::touching_pair(s, a, b, g))
+            H = touching(Pass::pair_law(s, e, a, b), Sim::history_at(s.hist_.pair, e),
                          Heat::cell_radius_pair(s, e));
           else if constexpr (Contact::indirect)
-            H = Heat::gap_pair_conductance(s, i, j, e, g);
-          if (H != 0.0) f(i, static_cast<std::size_t>(j), false, H);
+            H = Heat::gap_pair_conductance(s, a, b, e, g);
+          if (H != 0.0) f(a, b, false, H);
         }
         for (const auto e : s.list_.wall_entries(i)) {
           const auto w = s.list_.walls[e];

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace grain::detail {
@@ -160,6 +161,14 @@ struct HeatStep {
       (wall ? s.static_walls_ : s.static_pairs_)
           .push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), H});
     });
+    if constexpr (Sim::sums_by_id) {
+      // pairs by (lower id, higher id): each particle then receives its pairs' heat in ascending
+      // partner id (first the partners below it, then those above)
+      const auto& id = s.particles_.id;
+      std::sort(s.static_pairs_.begin(), s.static_pairs_.end(), [&](const auto& x, const auto& y) {
+        return std::pair{id[x.i], id[x.j]} < std::pair{id[y.i], id[y.j]};
+      });
+    }
   }
 
   /// Thermal analysis: heat rates from the stored conductances (in a fixed order).

@@ -57,25 +57,14 @@ inline std::pair<long, long> static_share(long n) {
 /// it (..., 4, 5, 2, 3, 0, 1), while the data of both are still in the caches (at N = 1e6 the
 /// data of a step do not fit, and running all even chunks before all odd ones read much of them
 /// twice).
-///
-/// `ring_from` (>= 0): the rows of chunk 0 also write to the items of rows [ring_from, n) (the
-/// pairs across a periodic boundary along the slowest axis of the order). Chunk 0 then runs
-/// first on its thread, and every chunk that writes to those items (from the chunk below the one
-/// holding row ring_from, at least chunk 1) runs after it: its items hear from chunk 0 first,
-/// for any number of threads. The last thread of a team runs its chunks from the bottom up
-/// (each even chunk followed by the odd one below it), so that those chunks, at the top, wait
-/// least.
 template <class Work, class Run>
-void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, bool parallel,
-                       long ring_from = -1) {
+void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, bool parallel) {
   const long nchunks = (n + chunk - 1) / chunk;
   auto weight = [&](long c) { return work(c * chunk, std::min(n, (c + 1) * chunk)); };
   std::array<std::atomic<int>, 64> done{}; // at most 64 chunks
   double total = 0.0;
   for (long c = 0; c < nchunks; ++c)
     total += weight(c);
-  const bool ring = ring_from >= 0;
-  const long after_first = std::max(1L, ring_from / chunk - 1); // with the ring only
 #pragma omp parallel if (parallel)
   {
     long thread = 0, threads = 1;
@@ -97,7 +86,6 @@ void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, boo
       }
     }
     auto one = [&](long c) {
-      if (ring && c >= after_first) wait_for(done[0]);
       if (c % 2 == 1) {
         wait_for(done[static_cast<std::size_t>(c - 1)]);
         if (c + 1 < nchunks) wait_for(done[static_cast<std::size_t>(c + 1)]);
@@ -105,26 +93,15 @@ void run_paired_chunks(long n, long chunk, const Work& work, const Run& run, boo
       run(c * chunk, std::min(n, (c + 1) * chunk));
       done[static_cast<std::size_t>(c)].store(1, std::memory_order_release);
     };
-    if (ring && thread > 0 && thread == threads - 1) {
-      // from the bottom up, each even chunk followed by the odd one below it; an odd first chunk
-      // waits for the previous thread's last one, which that thread runs first
-      for (long c = a + a % 2; c < b; c += 2) {
-        one(c);
-        if (c - 1 >= a) one(c - 1);
-      }
-      if ((b - 1) % 2 == 1 && b - 1 >= a) one(b - 1);
-    } else {
-      // from the top down, each even chunk followed by the odd one above it; an odd last chunk
-      // waits for the next thread's first one, which that thread runs last: it goes last too
-      const long deferred = (b - 1) % 2 == 1 && b < nchunks && b - 1 >= a ? b - 1 : -1;
-      if (ring && a == 0) one(0); // chunk 0 first
-      for (long c = (b - 1) - (b - 1) % 2; c >= a; c -= 2) {
-        if (c > 0 || !ring) one(c);
-        if (c + 1 < b && c + 1 != deferred) one(c + 1);
-      }
-      if (a % 2 == 1 && a < b && a != deferred) one(a);
-      if (deferred >= 0) one(deferred);
+    // from the top down, each even chunk followed by the odd one above it; an odd last chunk
+    // waits for the next thread's first one, which that thread runs last: it goes last too
+    const long deferred = (b - 1) % 2 == 1 && b < nchunks && b - 1 >= a ? b - 1 : -1;
+    for (long c = (b - 1) - (b - 1) % 2; c >= a; c -= 2) {
+      one(c);
+      if (c + 1 < b && c + 1 != deferred) one(c + 1);
     }
+    if (a % 2 == 1 && a < b && a != deferred) one(a);
+    if (deferred >= 0) one(deferred);
   }
 }
 

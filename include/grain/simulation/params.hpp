@@ -5,6 +5,7 @@
 /// simulation's options (integrator, convection model, cell-size method, stages, fields).
 
 #include <grain/core/stages.hpp>
+#include <grain/core/sums.hpp>
 #include <grain/core/vector.hpp>
 #include <grain/integrate/integrators.hpp>
 #include <grain/models/concepts.hpp>
@@ -74,7 +75,8 @@ struct is_cell_method : std::bool_constant<cells::CellSizeMethod<T>> {};
 template <class T>
 struct is_option
     : std::bool_constant<integrator_option<T> || convection_option<T> || RadiationModel<T> ||
-                         cells::CellSizeMethod<T> || is_stages<T>::value || is_fields<T>::value> {};
+                         cells::CellSizeMethod<T> || is_stages<T>::value || is_fields<T>::value ||
+                         is_sums<T>::value> {};
 } // namespace detail
 
 /// Global settings of a simulation.

@@ -24,12 +24,13 @@
 namespace grain::detail {
 
 /// The candidate partners of each particle's radiation domain (both directions), and the
-/// positions of the neighbour-list build they were made with.
+/// neighbour list they were made with.
 template <int D>
 struct RadiationDomains {
   std::vector<std::uint32_t> offsets;  ///< row i is partners[offsets[i], offsets[i + 1])
   std::vector<std::uint32_t> partners; ///< candidates of row i, ascending
-  std::vector<Vec<D>> built_at;        ///< the neighbour list's snapshot at the build
+  /// The neighbour list they were made with (Simulation::list_generation_); none at first.
+  std::uint64_t built_for = std::numeric_limits<std::uint64_t>::max();
 };
 
 template <class Sim>
@@ -79,7 +80,7 @@ struct RadiationStep {
     for (std::size_t i = 0; i < n; ++i) // ... then j > i
       for (const auto e : half.pair_entries(i))
         dom.partners[fill[i]++] = half.partners[e];
-    dom.built_at = s.snapshot_;
+    dom.built_for = s.list_generation_;
   }
 
   /// Adds the radiation heat rate of every particle to its heat rate.
@@ -88,7 +89,7 @@ struct RadiationStep {
       auto& p = s.particles_;
       const std::size_t n = p.size();
       auto& dom = s.radiation_;
-      if (dom.offsets.size() != n + 1 || dom.built_at != s.snapshot_) build(s);
+      if (dom.offsets.size() != n + 1 || dom.built_for != s.list_generation_) build(s);
       const auto& prm = s.params_.radiation;
       const double tf = s.params_.fluid.temperature;
       const long nl = static_cast<long>(n);

@@ -143,12 +143,20 @@ struct NeighbourRebuild {
         const std::size_t k0 = perm.empty() ? k : perm[k];
         return mapped ? s.origin_[k0] : static_cast<std::uint32_t>(k0);
       };
+      // a history is kept in the order of its pair's law: the row first (reversed when the two
+      // swap roles), or with sums by id the lower id first (never reversed)
       s.hist_.carry_over(
-          old, old_hist, s.list_, old_of, [](History& h) { Contact::template reverse<D>(h); },
+          old, old_hist, s.list_, old_of,
+          [](History& h) {
+            if constexpr (!Sim::sums_by_id) Contact::template reverse<D>(h);
+            (void)h;
+          },
           parallel_threshold);
     } else {
       s.hist_.reset(s.list_);
     }
+    s.id_sums_.invalidate();
+    ++s.list_generation_;
     s.snapshot_ = p.position;
     s.periodic_.built_slide = s.periodic_.slide;
     s.wall_loads_.reset(s.list_.walls.size());
@@ -179,6 +187,7 @@ struct NeighbourRebuild {
     s.near_span_ = s.list_.max_span;
     s.ring_rows_ = 0;
     s.ring_from_ = 0;
+    s.ring_split_.clear();
     if (!s.periodic_.on) {
       s.image_code_.clear();
       return;
@@ -202,6 +211,12 @@ struct NeighbourRebuild {
         if (2 * static_cast<std::size_t>(d) <= n)
           near = std::max(near, d);
         else {
+          if (ring <= i) { // the first far entry of row i (its partners ascend)
+            s.ring_split_.resize(i + 1, 0);
+            for (std::size_t k = ring; k < i; ++k) // rows between without far entries
+              s.ring_split_[k] = s.list_.offsets[k + 1];
+            s.ring_split_[i] = e;
+          }
           ring = static_cast<std::uint32_t>(i + 1);
           ring_from = std::min(ring_from, static_cast<std::uint32_t>(j));
         }
@@ -293,8 +308,9 @@ struct NeighbourRebuild {
     for (long i = 0; i < nl; ++i) {
       const auto mi = p.material[i];
       for (const auto e : s.list_.pair_entries(i)) {
-        const auto j = s.list_.partners[e];
-        s.pair_cache_[e] = s.table_.mix_of(eff[i], eff[j], s.table_.index(mi, p.material[j]));
+        const auto [a, b] = Pass::oriented(s, static_cast<std::size_t>(i), s.list_.partners[e]);
+        s.pair_cache_[e] =
+            s.table_.mix_of(eff[a], eff[b], s.table_.index(p.material[a], p.material[b]));
       }
       for (const auto e : s.list_.wall_entries(i)) {
         const auto w = s.list_.walls[e];

@@ -99,6 +99,12 @@ struct VariableProperties {
     if (w >= wall_values[0].size()) return base;
     return with_values(wall_values, w, base);
   }
+  /// The current conductivity of wall w [W/(m K)], `base` its material's (wall_material_of
+  /// without making the whole material: it is asked per contact).
+  double wall_conductivity_of(std::size_t w, double base) const {
+    if (w >= wall_values[5].size() || std::isnan(wall_values[5][w])) return base;
+    return wall_values[5][w];
+  }
 
   /// The material `m` with the extremes its tables reach that bound the time step: the largest
   /// Young's modulus and conductivity, the smallest density and heat capacity.
